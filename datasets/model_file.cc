@@ -1,0 +1,35 @@
+#include "datasets/model_file.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "datasets/atomic_file.h"
+#include "datasets/io_error.h"
+#include "datasets/text_file.h"
+#include "model/model_json.h"
+
+namespace implicitfit {
+
+Model ReadModelFile(const std::string& path) {
+  const std::string text = ReadTextFile(path);
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    std::string what = e.what();
+    const size_t at = what.find("] ");
+    throw FileError(path, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+  }
+  try {
+    return ModelFromJson(document);
+  } catch (const ModelFormatError& e) {
+    throw FileError(path, std::string("invalid model: ") + e.what());
+  }
+}
+
+void WriteModelFile(const Model& model, const std::string& path) {
+  WriteFileAtomically(path, ModelToJson(model).dump(2) + "\n");
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,136 @@
+// The model tree: primitives (leaves) and smooth CSG operators (inner nodes), evaluated as one
+// implicit function f(x) with the project's sign (f < 0 inside, grad f outward).
+//
+// Structure and parameter values are kept apart: the nodes hold the structure (type, children,
+// order n, offsets), and every continuous parameter of the tree (primitive parameters, delta
+// and epsilon of every blend) lives in one flat vector, so a fitter can hand that vector to
+// Ceres and evaluate the tree on Jets: Evaluate<T>(params, x).
+//
+// Operators with more than two children fold left to right: op(op(c0, c1), c2) ...
+// Operator parameters: [delta, epsilon] with 0 < epsilon <= delta; order 0 is sharp min/max.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "model/cone.h"
+#include "model/cylinder.h"
+#include "model/ellipsoid.h"
+#include "model/plane.h"
+#include "model/quadric.h"
+#include "model/smooth_ops.h"
+#include "model/sphere.h"
+#include "model/torus.h"
+
+namespace implicitfit {
+
+enum class NodeType {
+  kPlane,
+  kSphere,
+  kCylinder,
+  kCone,
+  kTorus,
+  kEllipsoid,
+  kQuadric,
+  kUnion,
+  kIntersection,
+  kDifference,
+};
+
+// The JSON "type" string of a node type, and back (false when unknown).
+const char* NodeTypeName(NodeType type);
+bool NodeTypeFromName(const std::string& name, NodeType* type);
+bool IsOperator(NodeType type);
+// The named groups of a node type's parameters in flat-vector order, e.g. sphere:
+// center (3), radius (1). The JSON fields carry the same names.
+struct ParameterField {
+  const char* name;
+  int size;
+};
+const std::vector<ParameterField>& ParameterFieldsOf(NodeType type);
+// Number of parameters a primitive or operator node owns.
+int NumParametersOf(NodeType type);
+
+struct ModelNode {
+  NodeType type = NodeType::kSphere;
+  std::string name;                  // optional user label ("name" in JSON)
+  int first_parameter = 0;           // offset of this node's parameters in the flat vector
+  int num_parameters = 0;            // how many it owns
+  std::vector<int> children;         // operators: indices into Model::nodes
+  int order = 0;                     // operators: n of H_n (0 = sharp)
+  std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
+};
+
+class Model {
+ public:
+  // Builders. Parameters are copied into the flat vector; the new node's index is returned.
+  int AddPrimitive(NodeType type, const std::vector<double>& parameters, std::string name = "");
+  int AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon,
+                  int order, std::string name = "");
+  void SetRoot(int node) { root_ = node; }
+
+  int root() const { return root_; }
+  const std::vector<ModelNode>& nodes() const { return nodes_; }
+  std::vector<ModelNode>& mutable_nodes() { return nodes_; }
+  const std::vector<double>& parameters() const { return parameters_; }
+  std::vector<double>& mutable_parameters() { return parameters_; }
+
+  // f(x) for the given parameter vector (same layout as parameters()), any scalar type.
+  template <typename T>
+  T Evaluate(const T* params, const T* x) const {
+    return EvaluateNode(root_, params, x);
+  }
+  template <typename T>
+  T EvaluateNode(int index, const T* params, const T* x) const;
+
+  // f and grad f at x with the stored parameters (grad by forward-mode automatic
+  // differentiation, model/dual3.h).
+  double Value(const Eigen::Vector3d& x) const;
+  Eigen::Vector3d Gradient(const Eigen::Vector3d& x, double* value = nullptr) const;
+
+  // A readable name for every parameter, e.g. "root.children[1].center[2]" or, for a node with
+  // a "name", "<name>.radius".
+  std::vector<std::string> ParameterNames() const;
+  // Path of a node from the root, e.g. "root.children[0]", or its name when it has one.
+  std::string NodeLabel(int index) const;
+
+ private:
+  int AddNode(ModelNode node, const std::vector<double>& parameters);
+  std::vector<ModelNode> nodes_;
+  std::vector<double> parameters_;
+  int root_ = -1;
+};
+
+template <typename T>
+T Model::EvaluateNode(int index, const T* params, const T* x) const {
+  const ModelNode& node = nodes_[index];
+  const T* p = params + node.first_parameter;
+  switch (node.type) {
+    case NodeType::kPlane: return PlaneEvaluator::Evaluate(p, x);
+    case NodeType::kSphere: return SphereEvaluator::Evaluate(p, x);
+    case NodeType::kCylinder: return CylinderEvaluator::Evaluate(p, x);
+    case NodeType::kCone: return ConeEvaluator::Evaluate(p, x);
+    case NodeType::kTorus: return TorusEvaluator::Evaluate(p, x);
+    case NodeType::kEllipsoid: return EllipsoidEvaluator::Evaluate(p, x);
+    case NodeType::kQuadric: return QuadricEvaluator::Evaluate(p, x);
+    case NodeType::kUnion:
+    case NodeType::kIntersection:
+    case NodeType::kDifference: {
+      T acc = EvaluateNode(node.children[0], params, x);
+      for (size_t c = 1; c < node.children.size(); ++c) {
+        const T b = EvaluateNode(node.children[c], params, x);
+        if (node.type == NodeType::kUnion)
+          acc = SmoothUnion(acc, b, p[0], p[1], node.order);
+        else if (node.type == NodeType::kIntersection)
+          acc = SmoothIntersection(acc, b, p[0], p[1], node.order);
+        else
+          acc = SmoothDifference(acc, b, p[0], p[1], node.order);
+      }
+      return acc;
+    }
+  }
+  return T(0.0);
+}
+
+}  // namespace implicitfit

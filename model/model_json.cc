@@ -1,0 +1,281 @@
+#include "model/model_json.h"
+
+#include <cmath>
+#include <set>
+
+namespace implicitfit {
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void Fail(const std::string& path, const std::string& problem) {
+  throw ModelFormatError(path + ": " + problem);
+}
+
+double Number(const json& node, const std::string& key, const std::string& path) {
+  const std::string where = path + "." + key;
+  if (!node.contains(key)) Fail(where, "missing");
+  const json& v = node.at(key);
+  if (!v.is_number()) Fail(where, "must be a number");
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) Fail(where, "must be finite");
+  return x;
+}
+
+std::vector<double> Vector(const json& v, size_t size, const std::string& where) {
+  if (!v.is_array() || v.size() != size)
+    Fail(where, "must be an array of " + std::to_string(size) + " numbers");
+  std::vector<double> out;
+  for (size_t i = 0; i < size; ++i) {
+    if (!v[i].is_number()) Fail(where + "[" + std::to_string(i) + "]", "must be a number");
+    out.push_back(v[i].get<double>());
+    if (!std::isfinite(out.back())) Fail(where + "[" + std::to_string(i) + "]", "must be finite");
+  }
+  return out;
+}
+
+std::vector<double> Vector(const json& node, const std::string& key, size_t size,
+                           const std::string& path) {
+  if (!node.contains(key)) Fail(path + "." + key, "missing");
+  return Vector(node.at(key), size, path + "." + key);
+}
+
+double Norm(const std::vector<double>& v, size_t begin = 0) {
+  return std::sqrt(v[begin] * v[begin] + v[begin + 1] * v[begin + 1] + v[begin + 2] * v[begin + 2]);
+}
+
+void RequireNonZero(const std::vector<double>& v, size_t begin, const std::string& where) {
+  if (!(Norm(v, begin) > 0.0)) Fail(where, "must be a non-zero vector");
+}
+
+void RequirePositive(double x, const std::string& where) {
+  if (!(x > 0.0)) Fail(where, "must be > 0");
+}
+
+void CheckKeys(const json& node, const std::set<std::string>& allowed, const std::string& path) {
+  for (auto it = node.begin(); it != node.end(); ++it)
+    if (!allowed.count(it.key()))
+      Fail(path + "." + it.key(), "unknown field for a node of type " +
+                                      node.at("type").get<std::string>());
+}
+
+// Ellipsoid axes: 2 rows (e1, e2) or 3 rows whose third is parallel to e1 x e2.
+std::vector<double> EllipsoidAxes(const json& node, const std::string& path) {
+  const std::string where = path + ".axes";
+  if (!node.contains("axes")) Fail(where, "missing");
+  const json& axes = node.at("axes");
+  if (!axes.is_array() || (axes.size() != 2 && axes.size() != 3))
+    Fail(where, "must hold 2 or 3 direction vectors");
+  const std::vector<double> e1 = Vector(axes[0], 3, where + "[0]");
+  const std::vector<double> e2 = Vector(axes[1], 3, where + "[1]");
+  RequireNonZero(e1, 0, where + "[0]");
+  RequireNonZero(e2, 0, where + "[1]");
+  const double n1 = Norm(e1), n2 = Norm(e2);
+  const double cosine = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / (n1 * n2);
+  if (std::abs(cosine) > 1e-6) Fail(where, "the axes must be orthogonal");
+  if (axes.size() == 3) {
+    const std::vector<double> e3 = Vector(axes[2], 3, where + "[2]");
+    RequireNonZero(e3, 0, where + "[2]");
+    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    const double dot = (c[0] * e3[0] + c[1] * e3[1] + c[2] * e3[2]) / (n1 * n2 * Norm(e3));
+    if (std::abs(std::abs(dot) - 1.0) > 1e-6)
+      Fail(where + "[2]", "must be orthogonal to the first two axes");
+  }
+  std::vector<double> out = e1;
+  out.insert(out.end(), e2.begin(), e2.end());
+  return out;
+}
+
+std::vector<double> PrimitiveParameters(NodeType type, const json& node, const std::string& path) {
+  std::vector<double> p;
+  auto append = [&p](const std::vector<double>& v) { p.insert(p.end(), v.begin(), v.end()); };
+  switch (type) {
+    case NodeType::kPlane:
+      append(Vector(node, "normal", 3, path));
+      RequireNonZero(p, 0, path + ".normal");
+      p.push_back(Number(node, "offset", path));
+      break;
+    case NodeType::kSphere:
+      append(Vector(node, "center", 3, path));
+      p.push_back(Number(node, "radius", path));
+      RequirePositive(p[3], path + ".radius");
+      break;
+    case NodeType::kCylinder:
+      append(Vector(node, "point", 3, path));
+      append(Vector(node, "axis", 3, path));
+      RequireNonZero(p, 3, path + ".axis");
+      p.push_back(Number(node, "radius", path));
+      RequirePositive(p[6], path + ".radius");
+      break;
+    case NodeType::kCone:
+      append(Vector(node, "apex", 3, path));
+      append(Vector(node, "axis", 3, path));
+      RequireNonZero(p, 3, path + ".axis");
+      p.push_back(Number(node, "half_angle", path));
+      if (!(p[6] > 0.0 && p[6] < M_PI / 2))
+        Fail(path + ".half_angle", "must be in (0, pi/2) radians");
+      break;
+    case NodeType::kTorus:
+      append(Vector(node, "center", 3, path));
+      append(Vector(node, "axis", 3, path));
+      RequireNonZero(p, 3, path + ".axis");
+      p.push_back(Number(node, "major_radius", path));
+      p.push_back(Number(node, "minor_radius", path));
+      RequirePositive(p[6], path + ".major_radius");
+      RequirePositive(p[7], path + ".minor_radius");
+      break;
+    case NodeType::kEllipsoid:
+      append(Vector(node, "center", 3, path));
+      append(Vector(node, "radii", 3, path));
+      for (int i = 0; i < 3; ++i) RequirePositive(p[3 + i], path + ".radii[" + std::to_string(i) + "]");
+      append(EllipsoidAxes(node, path));
+      break;
+    case NodeType::kQuadric: {
+      append(Vector(node, "coefficients", 10, path));
+      double largest = 0.0;
+      for (double c : p) largest = std::max(largest, std::abs(c));
+      if (largest == 0.0) Fail(path + ".coefficients", "must not all be zero");
+      break;
+    }
+    default:
+      Fail(path, "internal: not a primitive");
+  }
+  return p;
+}
+
+std::set<std::string> AllowedKeys(NodeType type) {
+  std::set<std::string> keys = {"type", "name", "fixed"};
+  if (IsOperator(type)) {
+    keys.insert({"children", "delta", "epsilon", "order"});
+  } else {
+    for (const ParameterField& f : ParameterFieldsOf(type)) keys.insert(f.name);
+  }
+  return keys;
+}
+
+int ReadNode(const json& node, const std::string& path, Model* model) {
+  if (!node.is_object()) Fail(path, "must be an object (a model node)");
+  if (!node.contains("type") || !node.at("type").is_string())
+    Fail(path + ".type", "missing or not a string");
+  const std::string type_name = node.at("type").get<std::string>();
+  NodeType type;
+  if (!NodeTypeFromName(type_name, &type)) Fail(path + ".type", "unknown node type '" + type_name + "'");
+  CheckKeys(node, AllowedKeys(type), path);
+
+  std::string name;
+  if (node.contains("name")) {
+    if (!node.at("name").is_string()) Fail(path + ".name", "must be a string");
+    name = node.at("name").get<std::string>();
+  }
+  std::vector<std::string> fixed;
+  if (node.contains("fixed")) {
+    const json& f = node.at("fixed");
+    if (!f.is_array()) Fail(path + ".fixed", "must be an array of field names");
+    for (size_t i = 0; i < f.size(); ++i) {
+      const std::string where = path + ".fixed[" + std::to_string(i) + "]";
+      if (!f[i].is_string()) Fail(where, "must be a string");
+      const std::string field = f[i].get<std::string>();
+      bool known = false;
+      for (const ParameterField& pf : ParameterFieldsOf(type)) known |= field == pf.name;
+      if (!known) Fail(where, "'" + field + "' is not a parameter of a " + type_name);
+      fixed.push_back(field);
+    }
+  }
+
+  int index;
+  if (IsOperator(type)) {
+    if (!node.contains("children") || !node.at("children").is_array() ||
+        node.at("children").size() < 2)
+      Fail(path + ".children", "must be an array of at least 2 nodes");
+    const double delta = Number(node, "delta", path);
+    const double epsilon = Number(node, "epsilon", path);
+    if (!node.contains("order") || !node.at("order").is_number_integer())
+      Fail(path + ".order", "missing or not an integer");
+    const long long order = node.at("order").get<long long>();
+    if (order < 0 || order > UnitStep::kMaxOrder)
+      Fail(path + ".order", "must be an integer in 0.." + std::to_string(UnitStep::kMaxOrder));
+    RequirePositive(delta, path + ".delta");
+    RequirePositive(epsilon, path + ".epsilon");
+    if (epsilon > delta) Fail(path + ".epsilon", "must not exceed delta (0 < epsilon <= delta)");
+    std::vector<int> children;
+    const json& ch = node.at("children");
+    for (size_t i = 0; i < ch.size(); ++i)
+      children.push_back(ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", model));
+    index = model->AddOperator(type, children, delta, epsilon, static_cast<int>(order), name);
+  } else {
+    index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
+  }
+  model->mutable_nodes()[index].fixed = fixed;
+  return index;
+}
+
+json Slice(const std::vector<double>& p, int begin, int size) {
+  return json(std::vector<double>(p.begin() + begin, p.begin() + begin + size));
+}
+
+json WriteNode(const Model& model, int index) {
+  const ModelNode& node = model.nodes()[index];
+  const std::vector<double>& p = model.parameters();
+  json out;
+  out["type"] = NodeTypeName(node.type);
+  if (!node.name.empty()) out["name"] = node.name;
+  if (IsOperator(node.type)) {
+    json children = json::array();
+    for (int c : node.children) children.push_back(WriteNode(model, c));
+    out["children"] = children;
+    out["delta"] = p[node.first_parameter];
+    out["epsilon"] = p[node.first_parameter + 1];
+    out["order"] = node.order;
+  } else if (node.type == NodeType::kEllipsoid) {
+    const int b = node.first_parameter;
+    out["center"] = Slice(p, b, 3);
+    out["radii"] = Slice(p, b + 3, 3);
+    // e3 = e1 x e2 (normalised) is derived, written for readers that want a full frame.
+    const double* e1 = &p[b + 6];
+    const double* e2 = &p[b + 9];
+    double e3[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                    e1[0] * e2[1] - e1[1] * e2[0]};
+    const double n = std::sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
+    out["axes"] = json::array({Slice(p, b + 6, 3), Slice(p, b + 9, 3),
+                               json::array({e3[0] / n, e3[1] / n, e3[2] / n})});
+  } else {
+    int k = node.first_parameter;
+    for (const ParameterField& f : ParameterFieldsOf(node.type)) {
+      out[f.name] = f.size == 1 ? json(p[k]) : Slice(p, k, f.size);
+      k += f.size;
+    }
+  }
+  if (!node.fixed.empty()) out["fixed"] = node.fixed;
+  return out;
+}
+
+}  // namespace
+
+Model ModelFromJson(const json& document) {
+  if (!document.is_object()) Fail("(document)", "must be a JSON object");
+  for (auto it = document.begin(); it != document.end(); ++it)
+    if (it.key() != "format" && it.key() != "version" && it.key() != "root")
+      Fail(it.key(), "unknown top-level field");
+  if (!document.contains("format") || document.at("format") != "implicitfit-model")
+    Fail("format", "must be \"implicitfit-model\"");
+  if (!document.contains("version") || !document.at("version").is_number_integer())
+    Fail("version", "missing or not an integer");
+  if (document.at("version").get<long long>() != 1)
+    Fail("version", "unsupported version " + document.at("version").dump() + " (this build reads 1)");
+  if (!document.contains("root")) Fail("root", "missing");
+  Model model;
+  const int root = ReadNode(document.at("root"), "root", &model);
+  model.SetRoot(root);
+  return model;
+}
+
+json ModelToJson(const Model& model) {
+  json out;
+  out["format"] = "implicitfit-model";
+  out["version"] = 1;
+  out["root"] = WriteNode(model, model.root());
+  return out;
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,46 @@
+// Tiny 3-vector helpers on raw T* / arrays, so that evaluators stay allocation-free and work for
+// any scalar (double, Ceres Jet, Eigen AutoDiffScalar).
+#pragma once
+
+#include <cmath>
+
+namespace implicitfit {
+
+template <typename T>
+T Dot3(const T* a, const T* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+template <typename T>
+T Norm3(const T* a) {
+  using std::sqrt;
+  return sqrt(Dot3(a, a));
+}
+
+// out = a - b
+template <typename T>
+void Sub3(const T* a, const T* b, T* out) {
+  out[0] = a[0] - b[0];
+  out[1] = a[1] - b[1];
+  out[2] = a[2] - b[2];
+}
+
+// out = a x b
+template <typename T>
+void Cross3(const T* a, const T* b, T* out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// Splits d into its component along the unit axis u (returned) and the length of the rest
+// (radial), computed as |u x d| which stays accurate when d is nearly parallel to u.
+template <typename T>
+T AxialRadial(const T* u, const T* d, T* radial) {
+  T c[3];
+  Cross3(u, d, c);
+  *radial = Norm3(c);
+  return Dot3(u, d);
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian packages implicitfit builds with, when any is missing. Idempotent and
+# silent when everything is already there. Needs root (or sudo) only when it installs.
+set -euo pipefail
+packages=(cmake g++ make libceres-dev libeigen3-dev libpcl-dev libflann-dev libopenmpi-dev
+          openmpi-bin nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "setup: installing ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,45 @@
+#include "datasets/xyz_reader.h"
+
+#include <gtest/gtest.h>
+
+#include "datasets/io_error.h"
+
+namespace implicitfit {
+namespace {
+
+TEST(XyzReader, ReadsThreeAndSixColumnsWithCommentsAndCommas) {
+  const PointCloud a = ParseXyzText("# header\n1 2 3\n\n4,5,6\n  7\t8 9\r\n", "a.xyz");
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_FALSE(a.has_normals());
+  EXPECT_EQ(a.points[1], Eigen::Vector3d(4, 5, 6));
+  EXPECT_EQ(a.points[2], Eigen::Vector3d(7, 8, 9));
+  const PointCloud b = ParseXyzText("0 0 0 0 0 2\n1 1 1 3 0 4", "b.xyz");
+  ASSERT_TRUE(b.has_normals());
+  EXPECT_TRUE(b.normals[0].isApprox(Eigen::Vector3d(0, 0, 1)));
+  EXPECT_TRUE(b.normals[1].isApprox(Eigen::Vector3d(0.6, 0, 0.8)));
+}
+
+void ExpectRefused(const std::string& text, const std::string& message) {
+  try {
+    ParseXyzText(text, "c.xyz");
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(message, 0), 0u) << e.what();
+  }
+}
+
+TEST(XyzReader, RefusesHostileTextWithTheLineNumber) {
+  ExpectRefused("", "c.xyz: no points");
+  ExpectRefused("# only a comment\n\n", "c.xyz: no points");
+  ExpectRefused("1 2 3\n1 2\n", "c.xyz:2: expected 3 or 6 numbers");
+  ExpectRefused("1 2 3\n1 2 3 4 5 6\n", "c.xyz:2: found 6 numbers where earlier lines have 3");
+  ExpectRefused("1 2 3 4 5 6 7 8\n", "c.xyz:1: expected 3 or 6 numbers, found more");
+  ExpectRefused("1 2 x\n", "c.xyz:1: 'x' is not a number");
+  ExpectRefused("1 2 3\n4 nan 6\n", "c.xyz:2: NaN or infinite");
+  ExpectRefused("1 2 inf\n", "c.xyz:1: NaN or infinite");
+  ExpectRefused("1 2 3 0 0 0\n", "c.xyz:1: zero-length normal");
+  ExpectRefused(std::string("1 2 3\n\x01\x02\xff garbage\n", 20), "c.xyz:2:");
+}
+
+}  // namespace
+}  // namespace implicitfit
