@@ -1,0 +1,134 @@
+#include "datasets/model_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
+  const ModelNode& node = model.nodes()[index];
+  const double* p = model.parameters().data() + node.first_parameter;
+  auto around = [&](const Vec& c, double half) {
+    *lo = c - Vec::Constant(half);
+    *hi = c + Vec::Constant(half);
+  };
+  switch (node.type) {
+    case NodeType::kPlane: {
+      const Vec n(p[0], p[1], p[2]);
+      around(n * p[3] / n.squaredNorm(), 1.0);
+      return;
+    }
+    case NodeType::kSphere: around(Vec(p[0], p[1], p[2]), p[3] * 1.05); return;
+    case NodeType::kCylinder: around(Vec(p[0], p[1], p[2]), 2.0 * p[6]); return;
+    case NodeType::kCone: {
+      const Vec a = Vec(p[3], p[4], p[5]).normalized();
+      around(Vec(p[0], p[1], p[2]) + a, 1.0 + std::tan(p[6]));
+      return;
+    }
+    case NodeType::kTorus: around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05); return;
+    case NodeType::kEllipsoid: around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]})); return;
+    case NodeType::kQuadric: around(Vec::Zero(), 2.0); return;
+    default: {
+      NodeBox(model, node.children[0], lo, hi);
+      for (size_t c = 1; c < node.children.size(); ++c) {
+        Vec l, h;
+        NodeBox(model, node.children[c], &l, &h);
+        *lo = lo->cwiseMin(l);
+        *hi = hi->cwiseMax(h);
+      }
+      return;
+    }
+  }
+}
+
+bool Inside(const Vec& x, const Vec& lo, const Vec& hi) {
+  return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+}
+
+}  // namespace
+
+void SamplingBox(const Model& model, Vec* box_min, Vec* box_max) { NodeBox(model, model.root(), box_min, box_max); }
+
+SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
+  SampledCloud out;
+  if (options.has_box) {
+    out.box_min = options.box_min;
+    out.box_max = options.box_max;
+  } else {
+    SamplingBox(model, &out.box_min, &out.box_max);
+  }
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  auto uniform_in_box = [&]() {
+    Vec x;
+    for (int k = 0; k < 3; ++k) x[k] = out.box_min[k] + u01(rng) * (out.box_max[k] - out.box_min[k]);
+    return x;
+  };
+  const int outliers = static_cast<int>(std::lround(options.outlier_fraction * options.count));
+  const int inliers = options.count - outliers;
+  const double diagonal = (out.box_max - out.box_min).norm();
+  const bool partial = options.view_dir.norm() > 0 && options.view_angle_deg < 180.0;
+  const Vec view = partial ? options.view_dir.normalized() : Vec::Zero();
+  const double view_cos = std::cos(options.view_angle_deg * M_PI / 180.0);
+
+  std::vector<Vec> pts, nrm;
+  long attempts = 0;
+  const long max_attempts = 200L * options.count + 10000;
+  while (static_cast<int>(pts.size()) < inliers) {
+    if (++attempts > max_attempts)
+      throw std::runtime_error("could not sample the zero set: too few projections landed inside the box" +
+                               std::string(partial ? " and the view cone" : ""));
+    Vec x = uniform_in_box();
+    bool converged = false;
+    for (int it = 0; it < 50; ++it) {
+      double f;
+      const Vec g = model.Gradient(x, &f);
+      if (std::abs(f) < 1e-12 * (1.0 + x.cwiseAbs().maxCoeff())) {
+        converged = true;
+        break;
+      }
+      const double g2 = g.squaredNorm();
+      if (!(g2 > 1e-20) || !std::isfinite(g2)) break;
+      x -= f * g / g2;
+    }
+    if (!converged || !Inside(x, out.box_min, out.box_max)) continue;
+    const Vec g = model.Gradient(x);
+    const Vec n = g.normalized();
+    if (!n.allFinite()) continue;
+    // Newton steps can end on a point where f is not smooth (a cone's apex, a crease): there
+    // the gradient is no normal. Keep x only if f grows linearly along n on both sides.
+    const double h = 1e-4 * diagonal, gn = g.norm();
+    if (std::abs(model.Value(x + h * n) - h * gn) > 0.1 * h * gn ||
+        std::abs(model.Value(x - h * n) + h * gn) > 0.1 * h * gn)
+      continue;
+    if (partial && n.dot(view) < view_cos) continue;
+    pts.push_back(x + options.noise * gauss(rng) * n);
+    nrm.push_back(n);
+  }
+  out.is_outlier.assign(pts.size(), false);
+  for (int i = 0; i < outliers; ++i) {
+    pts.push_back(uniform_in_box());
+    nrm.push_back(Vec(gauss(rng), gauss(rng), gauss(rng)).normalized());
+    out.is_outlier.push_back(true);
+  }
+  // Interleave outliers with inliers (deterministic shuffle) so file order tells nothing.
+  std::vector<size_t> order(pts.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<bool> outlier_flags(pts.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    out.cloud.points.push_back(pts[order[i]]);
+    out.cloud.normals.push_back(nrm[order[i]]);
+    outlier_flags[i] = out.is_outlier[order[i]];
+  }
+  out.is_outlier = outlier_flags;
+  return out;
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,48 @@
+// Oriented points on a model's zero set, with known truth (the `sample` command and the
+// recovery tests). Works for every model kind, blends included:
+//   1. draw x uniformly in a box around the model (SamplingBox: derived from the primitives'
+//      parameters, or given), 2. project it onto f = 0 by Newton steps
+//      x <- x - f(x) grad f(x) / |grad f(x)|^2 until |f| < 1e-12 (1 + |x|_inf) (or give up after 50),
+//   3. keep it if f is smooth there (f(x +- h n) = +-h |grad f| within 10%, h = 1e-4 of the box
+//      diagonal: this drops points that collapsed onto a cone's apex or a sharp crease), and if
+//      it stays inside the box and the optional view cone (partial views: only the
+//      points whose outward normal is within view_angle of view_dir, like a scanner sees them).
+// The normal is grad f / |grad f| (outward, DESIGN.md sign). Then noise: each point moves by
+// N(0, noise^2) along its normal (normals stay the true ones); outliers: a fraction of the
+// output is replaced by points uniform in the box with uniformly random unit normals.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "datasets/point_cloud.h"
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct SampleOptions {
+  int count = 1000;                       // points in the output (inliers + outliers)
+  double noise = 0.0;                     // sigma of the displacement along the normal
+  double outlier_fraction = 0.0;          // in [0, 1)
+  unsigned seed = 1;
+  Eigen::Vector3d view_dir = Eigen::Vector3d::Zero();  // zero: no partial view
+  double view_angle_deg = 180.0;          // keep normals within this angle of view_dir
+  bool has_box = false;                   // use box_min/box_max instead of the model's box
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
+};
+
+struct SampledCloud {
+  PointCloud cloud;
+  std::vector<bool> is_outlier;           // truth, one per point
+  Eigen::Vector3d box_min, box_max;       // the box that was sampled
+};
+
+// Throws std::runtime_error when the zero set cannot be reached inside the box.
+SampledCloud SampleModel(const Model& model, const SampleOptions& options);
+
+// A box that holds the interesting part of the model's zero set (primitives: their extent,
+// infinite ones a region around their point/apex of a few radii; operators: union of the
+// children's boxes).
+void SamplingBox(const Model& model, Eigen::Vector3d* box_min, Eigen::Vector3d* box_max);
+
+}  // namespace implicitfit

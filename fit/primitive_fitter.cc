@@ -1,0 +1,416 @@
+#include "fit/primitive_fitter.h"
+
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+#include <ceres/sphere_manifold.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <thread>
+
+#include "fit/batched_distance_cost.h"
+#include "fit/minimal_samples.h"
+#include "model/dual3.h"
+
+namespace implicitfit {
+namespace {
+
+constexpr int kBatch = 256;
+
+bool IsPositionField(const std::string& f) { return f == "center" || f == "point" || f == "apex"; }
+bool IsDirectionField(const std::string& f) { return f == "axis" || f == "normal"; }
+bool IsRadiusField(const std::string& f) {
+  return f == "radius" || f == "major_radius" || f == "minor_radius";
+}
+
+// Moves the parameters of a primitive by -shift (recentring) or +shift.
+void Translate(NodeType kind, std::vector<double>* p, const Eigen::Vector3d& shift) {
+  int k = 0;
+  for (const ParameterField& f : ParameterFieldsOf(kind)) {
+    if (IsPositionField(f.name))
+      for (int j = 0; j < 3; ++j) (*p)[k + j] += shift[j];
+    k += f.size;
+  }
+  if (kind == NodeType::kPlane) {
+    const Eigen::Vector3d n((*p)[0], (*p)[1], (*p)[2]);
+    (*p)[3] += n.dot(shift) / n.norm();
+  }
+}
+
+// Normalises directions and puts the primitive in a canonical form.
+void Canonicalise(NodeType kind, std::vector<double>* p, const Eigen::Vector3d& centroid) {
+  int k = 0;
+  for (const ParameterField& f : ParameterFieldsOf(kind)) {
+    if (IsDirectionField(f.name)) {
+      Eigen::Map<Eigen::Vector3d> v(p->data() + k);
+      const double n = v.norm();
+      v /= n;
+      if (kind == NodeType::kPlane) (*p)[3] /= n;
+    }
+    k += f.size;
+  }
+  if (kind == NodeType::kCylinder) {  // point on the axis closest to the centroid
+    Eigen::Map<Eigen::Vector3d> q(p->data()), a(p->data() + 3);
+    q += a * a.dot(centroid - q);
+  }
+}
+
+template <typename E>
+struct Kind {
+  static double F(const double* p, const double* x) { return E::Evaluate(p, x); }
+  // |cos(grad f, n)| at x.
+  static double NormalCos(const std::vector<Dual3>& p, const Eigen::Vector3d& x, const Eigen::Vector3d& n) {
+    const Dual3 xd[3] = {Dual3(x[0], Eigen::Vector3d::UnitX()), Dual3(x[1], Eigen::Vector3d::UnitY()),
+                         Dual3(x[2], Eigen::Vector3d::UnitZ())};
+    const Eigen::Vector3d g = E::Evaluate(p.data(), xd).v;
+    const double gn = g.norm();
+    return gn > 0 ? std::abs(g.dot(n)) / gn : 0.0;
+  }
+};
+
+struct Hypothesizer {
+  NodeType kind;
+  const std::vector<Eigen::Vector3d>& x;
+  const std::vector<Eigen::Vector3d>& n;
+  std::mt19937& rng;
+
+  bool Draw(std::vector<double>* params) {
+    std::uniform_int_distribution<size_t> pick(0, x.size() - 1);
+    switch (kind) {
+      case NodeType::kPlane: {
+        const size_t i = pick(rng);
+        return PlaneFromSample(x[i], n[i], params);
+      }
+      case NodeType::kSphere:
+      case NodeType::kCylinder: {
+        const size_t i = pick(rng), j = pick(rng);
+        if (i == j) return false;
+        const Vec3 p[2] = {x[i], x[j]}, m[2] = {n[i], n[j]};
+        return kind == NodeType::kSphere ? SphereFromSample(p, m, params) : CylinderFromSample(p, m, params);
+      }
+      case NodeType::kCone: {
+        const size_t i = pick(rng), j = pick(rng), k = pick(rng);
+        if (i == j || j == k || i == k) return false;
+        const Vec3 p[3] = {x[i], x[j], x[k]}, m[3] = {n[i], n[j], n[k]};
+        return ConeFromSample(p, m, params);
+      }
+      case NodeType::kTorus: {
+        std::vector<Vec3> p, m;
+        for (int s = 0; s < 7; ++s) {
+          const size_t i = pick(rng);
+          p.push_back(x[i]);
+          m.push_back(n[i]);
+        }
+        return TorusFromSample(p, m, params);
+      }
+      default:
+        return false;
+    }
+  }
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + mid, v.end());
+  return v[mid];
+}
+
+template <typename E>
+PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
+                       const std::vector<Eigen::Vector3d>& input_normals, const PrimitiveFitOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  PrimitiveFitResult result;
+  const NodeType kind = options.kind;
+  const size_t N = input_points.size();
+  const bool has_normals = !input_normals.empty();
+
+  // Recentred copy (precision with large coordinates), as a flat xyz array for the costs.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : input_points) centroid += p;
+  centroid /= static_cast<double>(N);
+  std::vector<Eigen::Vector3d> pts(N);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (size_t i = 0; i < N; ++i) {
+    pts[i] = input_points[i] - centroid;
+    lo = lo.cwiseMin(pts[i]);
+    hi = hi.cwiseMax(pts[i]);
+  }
+  const std::vector<double> xyz(pts[0].data(), pts[0].data() + 3 * N);
+  const double tau = options.threshold > 0 ? options.threshold : 0.01 * (hi - lo).norm();
+
+  // Normals for hypotheses: given ones, or none (then only the kinds that need none could be
+  // hypothesised; all five need normals here, so the caller estimates them first).
+  if (!has_normals) {
+    result.message = "the cloud has no normals (they are needed to hypothesise a " +
+                     std::string(NodeTypeName(kind)) + ")";
+    return result;
+  }
+
+  // Fixed fields, in the recentred frame.
+  std::vector<double> fixed_values(E::kNumParameters, NAN);
+  {
+    int k = 0;
+    std::vector<double> probe(E::kNumParameters, 0.0);
+    for (const ParameterField& f : ParameterFieldsOf(kind)) {
+      auto it = options.fixed.find(f.name);
+      if (it != options.fixed.end())
+        for (int j = 0; j < f.size; ++j) fixed_values[k + j] = it->second[j] - (IsPositionField(f.name) ? centroid[j] : 0.0);
+      k += f.size;
+    }
+    if (kind == NodeType::kPlane && options.fixed.count("offset") && options.fixed.count("normal")) {
+      const auto& nn = options.fixed.at("normal");
+      const Eigen::Vector3d nv(nn[0], nn[1], nn[2]);
+      fixed_values[3] = options.fixed.at("offset")[0] - nv.dot(centroid) / nv.norm();
+    }
+  }
+  auto apply_fixed = [&](std::vector<double>* p) {
+    for (int k = 0; k < E::kNumParameters; ++k)
+      if (!std::isnan(fixed_values[k])) (*p)[k] = fixed_values[k];
+  };
+
+  // 1. Hypotheses scored on a subsample.
+  std::mt19937 rng(options.seed);
+  std::vector<size_t> sub(N);
+  std::iota(sub.begin(), sub.end(), 0);
+  if (N > static_cast<size_t>(options.score_subsample)) {
+    std::shuffle(sub.begin(), sub.end(), rng);
+    sub.resize(options.score_subsample);
+  }
+  Hypothesizer draw{kind, pts, input_normals, rng};
+  std::vector<double> best;
+  int best_score = -1;
+  std::vector<double> h;
+  for (int t = 0; t < options.hypotheses; ++t) {
+    if (!draw.Draw(&h)) continue;
+    apply_fixed(&h);
+    const std::vector<Dual3> hd(h.begin(), h.end());
+    int score = 0;
+    for (size_t i : sub) {
+      if (std::abs(Kind<E>::F(h.data(), pts[i].data())) >= tau) continue;
+      if (Kind<E>::NormalCos(hd, pts[i], input_normals[i]) < options.normal_cos) continue;
+      ++score;
+    }
+    if (score > best_score) {
+      best_score = score;
+      best = h;
+    }
+  }
+  if (best.empty()) {
+    result.message = "no valid hypothesis from " + std::to_string(options.hypotheses) +
+                     " minimal samples (degenerate data for a " + NodeTypeName(kind) + "?)";
+    return result;
+  }
+
+  // 2. Robust refinement.
+  std::vector<double> params = best;
+  std::vector<int> inliers;
+  double band = tau;
+  auto classify = [&](const std::vector<double>& p, double limit) {
+    std::vector<int> in;
+    const std::vector<Dual3> pd(p.begin(), p.end());
+    for (size_t i = 0; i < N; ++i) {
+      if (std::abs(Kind<E>::F(p.data(), pts[i].data())) >= limit) continue;
+      if (Kind<E>::NormalCos(pd, pts[i], input_normals[i]) < options.normal_cos) continue;
+      in.push_back(static_cast<int>(i));
+    }
+    return in;
+  };
+  inliers = classify(params, band);
+  const std::vector<ParameterField>& fields = ParameterFieldsOf(kind);
+  std::vector<int> block_sizes;
+  for (const ParameterField& f : fields) block_sizes.push_back(f.size);
+  ceres::Solver::Summary summary;
+  std::unique_ptr<ceres::Problem> problem;
+  std::vector<std::vector<double>> blocks;
+  const int threads = options.num_threads > 0 ? options.num_threads
+                                               : std::max(1u, std::thread::hardware_concurrency());
+  for (int round = 0; round < options.max_rounds; ++round) {
+    const size_t min_needed = std::max<size_t>(options.min_inliers, options.min_inlier_fraction * N);
+    if (inliers.size() < min_needed) {
+      result.message = "too few inliers: " + std::to_string(inliers.size()) + " of " + std::to_string(N) +
+                       " points (need " + std::to_string(min_needed) + ")";
+      result.parameters = params;
+      Translate(kind, &result.parameters, centroid);
+      return result;
+    }
+    // Least squares on the current inliers.
+    blocks.clear();
+    int k = 0;
+    for (const ParameterField& f : fields) {
+      blocks.emplace_back(params.begin() + k, params.begin() + k + f.size);
+      k += f.size;
+    }
+    ceres::Problem::Options problem_options;
+    problem = std::make_unique<ceres::Problem>(problem_options);
+    std::vector<double*> block_ptrs;
+    for (auto& b : blocks) block_ptrs.push_back(b.data());
+    for (size_t s = 0; s < inliers.size(); s += kBatch) {
+      std::vector<int> batch(inliers.begin() + s, inliers.begin() + std::min(inliers.size(), s + kBatch));
+      problem->AddResidualBlock(new BatchedDistanceCost<E>(xyz.data(), std::move(batch), block_sizes), nullptr,
+                                block_ptrs);
+    }
+    for (size_t b = 0; b < fields.size(); ++b) {
+      const std::string name = fields[b].name;
+      if (options.fixed.count(name)) {
+        problem->SetParameterBlockConstant(block_ptrs[b]);
+        continue;
+      }
+      if (IsDirectionField(name)) problem->SetManifold(block_ptrs[b], new ceres::SphereManifold<3>());
+      if (IsRadiusField(name)) problem->SetParameterLowerBound(block_ptrs[b], 0, 1e-12);
+      if (name == "half_angle") {
+        problem->SetParameterLowerBound(block_ptrs[b], 0, 1e-6);
+        problem->SetParameterUpperBound(block_ptrs[b], 0, M_PI / 2 - 1e-6);
+      }
+    }
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_QR;
+    solver_options.num_threads = threads;
+    solver_options.max_num_iterations = 50;
+    solver_options.function_tolerance = 1e-10;
+    solver_options.parameter_tolerance = 1e-12;
+    ceres::Solve(solver_options, problem.get(), &summary);
+    result.iterations += static_cast<int>(summary.iterations.size());
+    result.rounds = round + 1;
+    k = 0;
+    for (auto& b : blocks) {
+      std::copy(b.begin(), b.end(), params.begin() + k);
+      k += static_cast<int>(b.size());
+    }
+    // Re-estimate the scale from the inliers, re-classify.
+    std::vector<double> abs_r;
+    abs_r.reserve(inliers.size());
+    for (int i : inliers) abs_r.push_back(std::abs(Kind<E>::F(params.data(), pts[i].data())));
+    result.sigma = 1.4826 * Median(abs_r);
+    band = std::max(options.band_sigmas * result.sigma, 1e-12);
+    std::vector<int> next = classify(params, band);
+    if (next == inliers) break;
+    inliers = std::move(next);
+  }
+
+  // 3. Figures and uncertainties.
+  result.inliers = inliers;
+  double ss = 0.0, angle_sum = 0.0;
+  const std::vector<Dual3> pd(params.begin(), params.end());
+  for (int i : inliers) {
+    const double r = Kind<E>::F(params.data(), pts[i].data());
+    ss += r * r;
+    result.max_abs = std::max(result.max_abs, std::abs(r));
+    angle_sum += std::acos(std::min(1.0, Kind<E>::NormalCos(pd, pts[i], input_normals[i]))) * 180.0 / M_PI;
+  }
+  result.rms = std::sqrt(ss / inliers.size());
+  result.mean_normal_angle_deg = angle_sum / inliers.size();
+
+  if (options.compute_covariance && problem) {
+    ceres::Covariance::Options cov_options;
+    cov_options.algorithm_type = ceres::DENSE_SVD;
+    cov_options.null_space_rank = -1;  // the cylinder's point slides along its axis: pseudo-inverse
+    cov_options.num_threads = threads;
+    ceres::Covariance covariance(cov_options);
+    std::vector<std::pair<const double*, const double*>> pairs;
+    std::vector<const double*> free_blocks;
+    for (auto& b : blocks)
+      if (!problem->IsParameterBlockConstant(b.data())) {
+        pairs.emplace_back(b.data(), b.data());
+        free_blocks.push_back(b.data());
+      }
+    result.standard_deviations.assign(E::kNumParameters, 0.0);
+    if (covariance.Compute(pairs, problem.get())) {
+      int dof = 0;
+      for (const ParameterField& f : fields)
+        if (!options.fixed.count(f.name)) dof += IsDirectionField(f.name) ? 2 : f.size;
+      const double s2 = ss / std::max<double>(1.0, static_cast<double>(inliers.size()) - dof);
+      int k = 0;
+      for (auto& b : blocks) {
+        if (!problem->IsParameterBlockConstant(b.data())) {
+          Eigen::MatrixXd c(b.size(), b.size());
+          covariance.GetCovarianceBlock(b.data(), b.data(), c.data());
+          for (size_t j = 0; j < b.size(); ++j) result.standard_deviations[k + j] = std::sqrt(std::max(0.0, c(j, j) * s2));
+        }
+        k += static_cast<int>(b.size());
+      }
+    }
+  }
+
+  Canonicalise(kind, &params, Eigen::Vector3d::Zero());
+  Translate(kind, &params, centroid);
+  result.parameters = params;
+  const bool converged = summary.termination_type == ceres::CONVERGENCE;
+  result.success = converged && summary.IsSolutionUsable();
+  result.message = converged ? "converged" : "solver did not converge: " + summary.message;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+bool PrimitiveFitOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& e) {
+    if (error) *error = e;
+    return false;
+  };
+  const NodeType k = kind;
+  if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder || k == NodeType::kCone ||
+        k == NodeType::kTorus))
+    return fail(std::string("cannot fit a ") + NodeTypeName(k) + " with the primitive fitter");
+  if (hypotheses < 1) return fail("hypotheses must be >= 1");
+  if (!(normal_cos >= 0 && normal_cos <= 1)) return fail("normal_cos must be in [0, 1]");
+  if (!(band_sigmas > 0)) return fail("band_sigmas must be > 0");
+  for (const auto& [name, value] : fixed) {
+    bool known = false;
+    for (const ParameterField& f : ParameterFieldsOf(k))
+      if (name == f.name) {
+        known = true;
+        if (static_cast<int>(value.size()) != f.size)
+          return fail("--fix " + name + " takes " + std::to_string(f.size) + " value(s)");
+      }
+    if (!known) return fail("--fix: '" + name + "' is not a parameter of a " + NodeTypeName(k));
+  }
+  return true;
+}
+
+Model PrimitiveFitResult::ToModel(NodeType kind) const {
+  Model m;
+  m.AddPrimitive(kind, parameters);
+  return m;
+}
+
+bool FittableKindFromName(const std::string& name, NodeType* kind) {
+  for (NodeType k : {NodeType::kPlane, NodeType::kSphere, NodeType::kCylinder, NodeType::kCone, NodeType::kTorus})
+    if (name == NodeTypeName(k)) {
+      *kind = k;
+      return true;
+    }
+  return false;
+}
+
+PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
+                                const std::vector<Eigen::Vector3d>& normals, const PrimitiveFitOptions& options) {
+  PrimitiveFitResult result;
+  std::string error;
+  if (!options.IsValid(&error)) {
+    result.message = error;
+    return result;
+  }
+  if (points.size() < 3) {
+    result.message = "too few points: " + std::to_string(points.size());
+    return result;
+  }
+  if (!normals.empty() && normals.size() != points.size()) {
+    result.message = "normals and points differ in count";
+    return result;
+  }
+  switch (options.kind) {
+    case NodeType::kPlane: return Fit<PlaneEvaluator>(points, normals, options);
+    case NodeType::kSphere: return Fit<SphereEvaluator>(points, normals, options);
+    case NodeType::kCylinder: return Fit<CylinderEvaluator>(points, normals, options);
+    case NodeType::kCone: return Fit<ConeEvaluator>(points, normals, options);
+    case NodeType::kTorus: return Fit<TorusEvaluator>(points, normals, options);
+    default: result.message = "unsupported kind"; return result;
+  }
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,73 @@
+// Robust fitting of one primitive (plane, sphere, cylinder, cone, torus) to an oriented cloud.
+//
+// 1. Hypotheses from minimal samples of oriented points (fit/minimal_samples.h), drawn with a
+//    seeded RNG, scored on a subsample: a point supports a hypothesis when |f| < tau and, when
+//    normals are given, |cos(grad f, n)| >= normal_cos (sign-agnostic: unoriented normals work).
+//    tau defaults to 1% of the cloud's bounding-box diagonal.
+// 2. Robust refinement to the maximum-likelihood fit on the inliers: least squares of the
+//    orthogonal distances f(x_i) (every primitive's f is an exact signed distance) over the
+//    current inlier set, in Ceres with batched residual blocks (fit/batched_distance_cost.h);
+//    then the noise scale is re-estimated as sigma = 1.4826 median |f| of the inliers and the
+//    inlier band reset to |f| < band_sigmas * sigma; repeated until the inlier set is stable.
+//    Axes and normals live on ceres::SphereManifold<3>; radii are bounded below by 0 and the
+//    cone angle to (0, pi/2) inside the solver (never clipped afterwards).
+// 3. Parameter standard deviations from ceres::Covariance at the solution, scaled by the
+//    residual variance RSS / (N - dof).
+// Everything is computed in a frame centred on the cloud's centroid, so UTM-sized coordinates
+// lose no precision; results are returned in the input frame.
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct PrimitiveFitOptions {
+  NodeType kind = NodeType::kSphere;     // plane, sphere, cylinder, cone or torus
+  unsigned seed = 1;                     // RNG seed: the fit is deterministic for a given seed
+  int hypotheses = 400;                  // minimal-sample hypotheses tried
+  int score_subsample = 2000;            // points used to score hypotheses
+  double threshold = 0.0;                // initial inlier band tau; <= 0: 1% of the bbox diagonal
+  double normal_cos = 0.8;               // inlier normal agreement |cos| (used when normals exist)
+  double band_sigmas = 3.0;              // final inlier band in units of the estimated sigma
+  int max_rounds = 8;                    // refit / re-classify rounds
+  int min_inliers = 20;                  // fewer: the fit fails
+  double min_inlier_fraction = 0.02;     // fewer than this fraction of the points: the fit fails
+  int num_threads = 0;                   // Ceres threads; 0 = hardware concurrency
+  bool compute_covariance = true;        // parameter standard deviations
+  std::map<std::string, std::vector<double>> fixed;  // field name -> value kept constant
+
+  // False (with a reason) for an invalid combination.
+  bool IsValid(std::string* error) const;
+};
+
+struct PrimitiveFitResult {
+  bool success = false;
+  std::string message;                   // why it failed, or the solver's termination
+  std::vector<double> parameters;        // flat layout of the model evaluator (model/*.h)
+  std::vector<double> standard_deviations;  // same layout; empty when not computed
+  std::vector<int> inliers;              // indices into the input cloud
+  double sigma = 0.0;                    // estimated noise scale (1.4826 MAD)
+  double rms = 0.0, max_abs = 0.0;       // of the inliers' distances
+  double mean_normal_angle_deg = -1.0;   // mean angle between grad f and the inliers' normals
+  int iterations = 0;                    // Ceres iterations, all rounds
+  int rounds = 0;
+  double seconds = 0.0;
+
+  // The fitted primitive as a one-node model.
+  Model ToModel(NodeType kind) const;
+};
+
+// points: the cloud; normals: empty or one per point.
+PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
+                                const std::vector<Eigen::Vector3d>& normals,
+                                const PrimitiveFitOptions& options);
+
+// "plane" -> kPlane ... for the five fittable kinds; false otherwise.
+bool FittableKindFromName(const std::string& name, NodeType* kind);
+
+}  // namespace implicitfit
