@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "datasets/file_normals.h"
 #include "datasets/io_error.h"
 #include "datasets/text_file.h"
 
@@ -14,7 +15,11 @@ bool IsSeparator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\r'
 
 }  // namespace
 
-PointCloud ParseXyzText(const std::string& text, const std::string& name) {
+PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudFileInfo* info) {
+  CloudFileInfo local;
+  CloudFileInfo& out = info ? *info : local;
+  out = CloudFileInfo();
+  out.format = "xyz";
   PointCloud cloud;
   int columns = 0;
   long line_number = 0;
@@ -41,7 +46,8 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name) {
       const double v = std::strtod(token.c_str(), &parsed_end);
       if (parsed_end != token.c_str() + token.size() || token.empty())
         throw LineError(name, line_number, "'" + token.substr(0, 40) + "' is not a number");
-      if (!std::isfinite(v)) throw LineError(name, line_number, "NaN or infinite value '" + token + "'");
+      if (!std::isfinite(v) && count < 3)
+        throw LineError(name, line_number, "NaN or infinite coordinate '" + token + "'");
       values[count++] = v;
       p = token_end;
       while (p < line_end && IsSeparator(*p)) ++p;
@@ -56,15 +62,17 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name) {
                           std::to_string(columns));
     cloud.points.emplace_back(values[0], values[1], values[2]);
     if (count == 6) {
-      const Eigen::Vector3d n(values[3], values[4], values[5]);
-      if (n.norm() == 0.0) throw LineError(name, line_number, "zero-length normal");
-      cloud.normals.push_back(n.normalized());
+      AddFileNormal(Eigen::Vector3d(values[3], values[4], values[5]), &cloud, &out);
     }
   }
   if (cloud.points.empty()) throw FileError(name, "no points (empty file or only comments)");
+  out.records = cloud.size();
+  out.normals_in_file = cloud.has_normals();
   return cloud;
 }
 
-PointCloud ReadXyzFile(const std::string& path) { return ParseXyzText(ReadTextFile(path), path); }
+PointCloud ReadXyzFile(const std::string& path, CloudFileInfo* info) {
+  return ParseXyzText(ReadTextFile(path), path, info);
+}
 
 }  // namespace implicitfit

@@ -1,18 +1,22 @@
 // Plain-text clouds (.xyz, .pwn, .txt): one point per line, "x y z" or "x y z nx ny nz",
 // separated by whitespace and/or commas. Blank lines and lines starting with '#' are skipped.
 // Every data line must have the same number of columns (3 or 6). Refused with InputError
-// "<file>:<line>: <problem>": other column counts, a token that is not a number, NaN or Inf,
-// a zero-length normal, and a file without any point.
+// "<file>:<line>: <problem>": other column counts, a token that is not a number, a NaN or
+// infinite coordinate, and a file without any point. A NaN, infinite or zero-length normal is
+// not an error here: it is left as a zero vector and listed in info->invalid_normals
+// (ReadCloudFile re-estimates it from the neighbours).
 #pragma once
 
 #include <string>
 
+#include "datasets/cloud_file_info.h"
 #include "datasets/point_cloud.h"
 
 namespace implicitfit {
 
-PointCloud ReadXyzFile(const std::string& path);
+PointCloud ReadXyzFile(const std::string& path, CloudFileInfo* info = nullptr);
 // The same, from text already in memory; `name` is used in messages.
-PointCloud ParseXyzText(const std::string& text, const std::string& name);
+PointCloud ParseXyzText(const std::string& text, const std::string& name,
+                        CloudFileInfo* info = nullptr);
 
 }  // namespace implicitfit

@@ -35,10 +35,20 @@ TEST(XyzReader, RefusesHostileTextWithTheLineNumber) {
   ExpectRefused("1 2 3\n1 2 3 4 5 6\n", "c.xyz:2: found 6 numbers where earlier lines have 3");
   ExpectRefused("1 2 3 4 5 6 7 8\n", "c.xyz:1: expected 3 or 6 numbers, found more");
   ExpectRefused("1 2 x\n", "c.xyz:1: 'x' is not a number");
-  ExpectRefused("1 2 3\n4 nan 6\n", "c.xyz:2: NaN or infinite");
-  ExpectRefused("1 2 inf\n", "c.xyz:1: NaN or infinite");
-  ExpectRefused("1 2 3 0 0 0\n", "c.xyz:1: zero-length normal");
+  ExpectRefused("1 2 3\n4 nan 6\n", "c.xyz:2: NaN or infinite coordinate");
+  ExpectRefused("1 2 inf\n", "c.xyz:1: NaN or infinite coordinate");
   ExpectRefused(std::string("1 2 3\n\x01\x02\xff garbage\n", 20), "c.xyz:2:");
+}
+
+TEST(XyzReader, ListsUnusableNormalsInsteadOfRefusingThem) {
+  CloudFileInfo info;
+  const PointCloud c = ParseXyzText("1 2 3 0 0 1\n1 2 4 0 0 0\n1 2 5 nan nan nan\n1 2 6 0 inf 0\n", "d.xyz", &info);
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(info.invalid_normals, (std::vector<size_t>{1, 2, 3}));
+  EXPECT_EQ(c.normals[0], Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(c.normals[2], Eigen::Vector3d::Zero());
+  EXPECT_TRUE(info.normals_in_file);
+  EXPECT_EQ(info.format, "xyz");
 }
 
 }  // namespace

@@ -1,0 +1,86 @@
+#include "datasets/normal_orientation.h"
+
+#include <algorithm>
+#include <numeric>
+#include <queue>
+#include <utility>
+
+namespace implicitfit {
+
+size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& viewpoint,
+                             std::vector<Eigen::Vector3d>* normals) {
+  size_t flipped = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if ((*normals)[i].dot(viewpoint - points[i]) < 0) {
+      (*normals)[i] = -(*normals)[i];
+      ++flipped;
+    }
+  }
+  return flipped;
+}
+
+// Prim's algorithm with a binary heap, written out (~30 lines) rather than pulling in
+// Boost.Graph: the graph is the neighbour lists as they are, made symmetric here.
+size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
+                                   const std::vector<std::vector<int>>& neighbours,
+                                   std::vector<Eigen::Vector3d>* normals) {
+  const size_t n = points.size();
+  std::vector<Eigen::Vector3d>& nrm = *normals;
+  std::vector<std::vector<int>> graph(n);
+  for (size_t i = 0; i < n; ++i)
+    for (int j : neighbours[i]) {
+      graph[i].push_back(j);
+      graph[j].push_back(static_cast<int>(i));
+    }
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) centroid += p;
+  centroid /= std::max<double>(1.0, static_cast<double>(n));
+
+  // Seeds in decreasing x: the first unvisited one is the max-x point of its component.
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return points[a].x() > points[b].x(); });
+
+  std::vector<char> done(n, 0);
+  size_t flipped = 0;
+  using Item = std::pair<double, std::pair<int, int>>;  // cost, (vertex, parent)
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  for (int seed : order) {
+    if (done[seed]) continue;
+    const Eigen::Vector3d out = points[seed] - centroid;
+    const double guess = out.norm() > 0 ? nrm[seed].dot(out) : nrm[seed].x();
+    if (guess < 0) {
+      nrm[seed] = -nrm[seed];
+      ++flipped;
+    }
+    heap.push({0.0, {seed, seed}});
+    while (!heap.empty()) {
+      const auto [v, parent] = heap.top().second;
+      heap.pop();
+      if (done[v]) continue;
+      done[v] = 1;
+      if (v != parent && nrm[v].dot(nrm[parent]) < 0) {
+        nrm[v] = -nrm[v];
+        ++flipped;
+      }
+      for (int w : graph[v])
+        if (!done[w]) heap.push({1.0 - std::abs(nrm[v].dot(nrm[w])), {w, v}});
+    }
+  }
+  return flipped;
+}
+
+double OpposedNeighbourFraction(const std::vector<Eigen::Vector3d>& normals,
+                                const std::vector<std::vector<int>>& neighbours) {
+  size_t parallel = 0, opposed = 0;
+  for (size_t i = 0; i < normals.size(); ++i)
+    for (int j : neighbours[i]) {
+      const double c = normals[i].dot(normals[j]);
+      if (std::abs(c) <= 0.5) continue;
+      ++parallel;
+      opposed += c < 0;
+    }
+  return parallel ? static_cast<double>(opposed) / static_cast<double>(parallel) : 0.0;
+}
+
+}  // namespace implicitfit
