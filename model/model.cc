@@ -24,6 +24,7 @@ const std::vector<TypeInfo>& Types() {
        {{"center", 3}, {"axis", 3}, {"major_radius", 1}, {"minor_radius", 1}}},
       {NodeType::kEllipsoid, "ellipsoid", {{"center", 3}, {"radii", 3}, {"axes", 6}}},
       {NodeType::kQuadric, "quadric", {{"coefficients", 10}}},
+      {NodeType::kBernsteinPatch, "bernstein_patch", {{"control_points", 0}}},
       {NodeType::kUnion, "union", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kIntersection, "intersection", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kDifference, "difference", {{"delta", 1}, {"epsilon", 1}}},
@@ -42,6 +43,13 @@ const TypeInfo& InfoOf(NodeType type) {
 const char* NodeTypeName(NodeType type) { return InfoOf(type).name; }
 
 const std::vector<ParameterField>& ParameterFieldsOf(NodeType type) { return InfoOf(type).fields; }
+
+std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
+  std::vector<ParameterField> fields = ParameterFieldsOf(node.type);
+  for (ParameterField& field : fields)
+    if (field.size == 0) field.size = node.num_parameters;  // the one per-node field
+  return fields;
+}
 
 bool NodeTypeFromName(const std::string& name, NodeType* type) {
   for (const TypeInfo& info : Types())
@@ -74,6 +82,8 @@ int Model::AddNode(ModelNode node, const std::vector<double>& parameters) {
 
 int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, std::string name) {
   if (IsOperator(type)) throw std::invalid_argument("AddPrimitive: operator type");
+  if (type == NodeType::kBernsteinPatch)
+    throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -81,6 +91,21 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
   node.type = type;
   node.name = std::move(name);
   return AddNode(std::move(node), parameters);
+}
+
+int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
+                             const std::vector<double>& control_points, std::string name) {
+  if (degree < 1) throw std::invalid_argument("AddBernsteinPatch: degree must be >= 1");
+  if (static_cast<long long>(control_points.size()) != NumBernsteinControlPoints(degree))
+    throw std::invalid_argument("AddBernsteinPatch: degree " + std::to_string(degree) + " takes " +
+                                std::to_string(NumBernsteinControlPoints(degree)) +
+                                " control points");
+  ModelNode node;
+  node.type = NodeType::kBernsteinPatch;
+  node.name = std::move(name);
+  node.degree = degree;
+  node.tetrahedron = tetrahedron;
+  return AddNode(std::move(node), control_points);
 }
 
 int Model::AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon,
@@ -131,7 +156,7 @@ std::vector<std::string> Model::ParameterNames() const {
     const ModelNode& node = nodes_[i];
     const std::string label = NodeLabel(static_cast<int>(i));
     int k = node.first_parameter;
-    for (const ParameterField& field : ParameterFieldsOf(node.type))
+    for (const ParameterField& field : ParameterFieldsOf(node))
       for (int j = 0; j < field.size; ++j)
         names[k++] = label + "." + field.name +
                      (field.size > 1 ? "[" + std::to_string(j) + "]" : std::string());

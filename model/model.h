@@ -8,12 +8,15 @@
 //
 // Operators with more than two children fold left to right: op(op(c0, c1), c2) ...
 // Operator parameters: [delta, epsilon] with 0 < epsilon <= delta; order 0 is sharp min/max.
+// Bernstein patches (model/bernstein_patch.h): the node holds the degree k and the tetrahedron
+// (structure); its parameters are the (k+1)(k+2)(k+3)/6 control points, field "control_points".
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "model/bernstein_patch.h"
 #include "model/cone.h"
 #include "model/cylinder.h"
 #include "model/ellipsoid.h"
@@ -33,6 +36,7 @@ enum class NodeType {
   kTorus,
   kEllipsoid,
   kQuadric,
+  kBernsteinPatch,
   kUnion,
   kIntersection,
   kDifference,
@@ -43,13 +47,14 @@ const char* NodeTypeName(NodeType type);
 bool NodeTypeFromName(const std::string& name, NodeType* type);
 bool IsOperator(NodeType type);
 // The named groups of a node type's parameters in flat-vector order, e.g. sphere:
-// center (3), radius (1). The JSON fields carry the same names.
+// center (3), radius (1). The JSON fields carry the same names. A field of size 0 has a
+// per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it.
 struct ParameterField {
   const char* name;
   int size;
 };
 const std::vector<ParameterField>& ParameterFieldsOf(NodeType type);
-// Number of parameters a primitive or operator node owns.
+// Number of parameters a primitive or operator node owns (0 for bernstein_patch: per node).
 int NumParametersOf(NodeType type);
 
 struct ModelNode {
@@ -60,7 +65,12 @@ struct ModelNode {
   std::vector<int> children;         // operators: indices into Model::nodes
   int order = 0;                     // operators: n of H_n (0 = sharp)
   std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
+  int degree = 0;                    // bernstein_patch: k >= 1
+  Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
 };
+
+// The parameter fields of one node, with the sizes of per-node fields filled in.
+std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node);
 
 class Model {
  public:
@@ -68,6 +78,10 @@ class Model {
   int AddPrimitive(NodeType type, const std::vector<double>& parameters, std::string name = "");
   int AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon,
                   int order, std::string name = "");
+  // A Bernstein patch of degree k >= 1 with NumBernsteinControlPoints(k) control points
+  // (DESIGN.md order); throws std::invalid_argument otherwise.
+  int AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
+                        const std::vector<double>& control_points, std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -114,6 +128,8 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kTorus: return TorusEvaluator::Evaluate(p, x);
     case NodeType::kEllipsoid: return EllipsoidEvaluator::Evaluate(p, x);
     case NodeType::kQuadric: return QuadricEvaluator::Evaluate(p, x);
+    case NodeType::kBernsteinPatch:
+      return BernsteinPatch::Evaluate(node.degree, node.tetrahedron, p, x);
     case NodeType::kUnion:
     case NodeType::kIntersection:
     case NodeType::kDifference: {

@@ -144,6 +144,41 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
   return p;
 }
 
+// bernstein_patch: {"degree": k, "vertices": [[3],[3],[3],[3]], "control_points": [...]}.
+constexpr long long kMaxBernsteinDegree = 100;
+
+int ReadBernsteinPatch(const json& node, const std::string& path, const std::string& name,
+                       Model* model) {
+  if (!node.contains("degree") || !node.at("degree").is_number_integer())
+    Fail(path + ".degree", "missing or not an integer");
+  const long long k = node.at("degree").get<long long>();
+  if (k < 1 || k > kMaxBernsteinDegree)
+    Fail(path + ".degree", "must be an integer in 1.." + std::to_string(kMaxBernsteinDegree));
+  if (!node.contains("vertices")) Fail(path + ".vertices", "missing");
+  const json& v = node.at("vertices");
+  if (!v.is_array() || v.size() != 4) Fail(path + ".vertices", "must hold 4 points [x, y, z]");
+  std::vector<double> corners;
+  for (size_t i = 0; i < 4; ++i) {
+    const std::vector<double> x = Vector(v[i], 3, path + ".vertices[" + std::to_string(i) + "]");
+    corners.insert(corners.end(), x.begin(), x.end());
+  }
+  Tetrahedron tetrahedron;
+  try {
+    tetrahedron = Tetrahedron::FromArray(corners.data());
+  } catch (const std::invalid_argument& e) {
+    Fail(path + ".vertices", e.what());
+  }
+  const long long count = NumBernsteinControlPoints(k);
+  if (!node.contains("control_points")) Fail(path + ".control_points", "missing");
+  const json& cp = node.at("control_points");
+  if (!cp.is_array() || static_cast<long long>(cp.size()) != count)
+    Fail(path + ".control_points", "must be an array of " + std::to_string(count) +
+                                       " numbers ((k+1)(k+2)(k+3)/6 for degree " +
+                                       std::to_string(k) + ")");
+  const std::vector<double> b = Vector(cp, static_cast<size_t>(count), path + ".control_points");
+  return model->AddBernsteinPatch(static_cast<int>(k), tetrahedron, b, name);
+}
+
 std::set<std::string> AllowedKeys(NodeType type) {
   std::set<std::string> keys = {"type", "name", "fixed"};
   if (IsOperator(type)) {
@@ -151,6 +186,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   } else {
     for (const ParameterField& f : ParameterFieldsOf(type)) keys.insert(f.name);
   }
+  if (type == NodeType::kBernsteinPatch) keys.insert({"degree", "vertices"});
   return keys;
 }
 
@@ -203,6 +239,8 @@ int ReadNode(const json& node, const std::string& path, Model* model) {
     for (size_t i = 0; i < ch.size(); ++i)
       children.push_back(ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", model));
     index = model->AddOperator(type, children, delta, epsilon, static_cast<int>(order), name);
+  } else if (type == NodeType::kBernsteinPatch) {
+    index = ReadBernsteinPatch(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -227,6 +265,15 @@ json WriteNode(const Model& model, int index) {
     out["delta"] = p[node.first_parameter];
     out["epsilon"] = p[node.first_parameter + 1];
     out["order"] = node.order;
+  } else if (node.type == NodeType::kBernsteinPatch) {
+    out["degree"] = node.degree;
+    json vertices = json::array();
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3d x = node.tetrahedron.vertex(i);
+      vertices.push_back(json::array({x[0], x[1], x[2]}));
+    }
+    out["vertices"] = vertices;
+    out["control_points"] = Slice(p, node.first_parameter, node.num_parameters);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);

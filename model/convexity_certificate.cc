@@ -1,0 +1,55 @@
+#include "model/convexity_certificate.h"
+
+#include <cmath>
+#include <limits>
+
+#include "model/bernstein_patch.h"
+#include "model/symmetric_eigen3.h"
+
+namespace implicitfit {
+
+void GuoMatrix(int k, const double* b, int m2, int m3, int m4, double a[6]) {
+  (void)k;  // the index of a multi-index does not depend on the degree
+  // b(mu + e_i + e_j) for i, j in 1..4 (0-based 0..3); e_1 only changes the implied first entry.
+  auto at = [&](int i, int j) {
+    int l[4] = {0, m2, m3, m4};
+    ++l[i];
+    ++l[j];
+    return b[BernsteinIndex(l[1], l[2], l[3])];
+  };
+  const double b44 = at(3, 3);
+  const double b4[3] = {at(0, 3), at(1, 3), at(2, 3)};
+  auto entry = [&](int i, int j) { return at(i, j) + b44 - b4[i] - b4[j]; };
+  a[0] = entry(0, 0);
+  a[1] = entry(1, 1);
+  a[2] = entry(2, 2);
+  a[3] = entry(0, 1);
+  a[4] = entry(0, 2);
+  a[5] = entry(1, 2);
+}
+
+ConvexityCertificate CertifyConvexity(int k, const double* control_points) {
+  ConvexityCertificate result;
+  if (k < 2) {
+    result.convex = k == 1;
+    return result;
+  }
+  result.convex = true;
+  result.min_eigenvalue = std::numeric_limits<double>::infinity();
+  const int m = k - 2;
+  for (int s1 = 0; s1 <= m; ++s1)
+    for (int s2 = 0; s2 <= s1; ++s2)
+      for (int m4 = 0; m4 <= s2; ++m4) {
+        double a[6], eig[3];
+        GuoMatrix(k, control_points, s1 - s2, s2 - m4, m4, a);
+        SymmetricEigenvalues3(a, eig);
+        const double frobenius = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] +
+                                           2.0 * (a[3] * a[3] + a[4] * a[4] + a[5] * a[5]));
+        if (!(eig[0] > kConvexityTolerance * frobenius)) result.convex = false;
+        if (std::isnan(eig[0]) || eig[0] < result.min_eigenvalue) result.min_eigenvalue = eig[0];
+        ++result.num_matrices;
+      }
+  return result;
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,39 @@
+// An independent second opinion on the convexity of a Bernstein patch, by sampling (Guo's
+// definition, not the A^mu matrices): the patch is convex at a point p of its zero set if the
+// surface lies in the half-space bounded by the tangent plane at p that -grad f(p) points to.
+//
+// Method. Draw `segments` random segments between uniform random points of the tetrahedron
+// (barycentric coordinates from Dirichlet(1,1,1,1)); along each, f is evaluated at `steps` + 1
+// points and every sign change is bisected to a zero point p (60 halvings). Points with a
+// vanishing gradient (|grad f| L <= 1e-6 max|b|, L the longest edge) are skipped. Then every
+// zero point p is tested against every other zero point q:
+//   (q - p) . grad f(p) / |grad f(p)| <= tolerance * L.
+// A certified patch (f convex on the tetrahedron) passes this test exactly: f(q) = 0 >=
+// f(p) + grad f(p) . (q - p). A failing point is a witness of non-convexity of the zero set
+// inside the tetrahedron. Deterministic for a given seed.
+#pragma once
+
+#include <cstdint>
+
+#include "model/bernstein_patch.h"
+
+namespace implicitfit {
+
+struct TangentPlaneTestOptions {
+  int segments = 1000;        // random segments through the tetrahedron
+  int steps = 16;             // sign-change search steps per segment
+  double tolerance = 1e-8;    // allowed excursion beyond a tangent plane, relative to L
+  std::uint64_t seed = 1;     // random generator seed
+};
+
+struct TangentPlaneTestResult {
+  int zero_points = 0;        // points of the zero set found inside the tetrahedron
+  int violations = 0;         // zero points whose tangent plane some other zero point crosses
+  double worst_excursion = 0.0;  // largest (q - p) . n / L seen (> tolerance: a violation)
+};
+
+TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tetrahedron,
+                                        const double* control_points,
+                                        const TangentPlaneTestOptions& options = {});
+
+}  // namespace implicitfit
