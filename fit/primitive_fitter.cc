@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <iterator>
 #include <thread>
 
 #include "fit/batched_distance_cost.h"
@@ -184,7 +185,12 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<double> best;
   int best_score = -1;
   std::vector<double> h;
-  for (int t = 0; t < options.hypotheses; ++t) {
+  // Adaptive RANSAC stopping: after t draws with best inlier ratio w, a sample of m points
+  // free of outliers was drawn with probability 1 - (1 - w^m)^t; stop once that reaches
+  // options.confidence (and after at least options.min_hypotheses).
+  const int m = kind == NodeType::kPlane ? 1 : kind == NodeType::kCone ? 3 : kind == NodeType::kTorus ? 7 : 2;
+  int needed = options.hypotheses;
+  for (int t = 0; t < needed; ++t) {
     if (!draw.Draw(&h)) continue;
     apply_fixed(&h);
     const std::vector<Dual3> hd(h.begin(), h.end());
@@ -197,6 +203,9 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     if (score > best_score) {
       best_score = score;
       best = h;
+      const double w = std::min(0.999, static_cast<double>(score) / sub.size());
+      const double k = std::log(1.0 - options.confidence) / std::log(1.0 - std::pow(w, m));
+      if (std::isfinite(k)) needed = std::clamp(static_cast<int>(std::ceil(k)), options.min_hypotheses, options.hypotheses);
     }
   }
   if (best.empty()) {
@@ -209,10 +218,22 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<double> params = best;
   std::vector<int> inliers;
   double band = tau;
+  // Coarse rounds run on a random working subset (the inlier set and scale settle there at a
+  // fraction of the cost); the final rounds use every point.
+  std::vector<int> working(N);
+  std::iota(working.begin(), working.end(), 0);
+  if (N > static_cast<size_t>(options.working_subsample)) {
+    std::shuffle(working.begin(), working.end(), rng);
+    working.resize(options.working_subsample);
+    std::sort(working.begin(), working.end());
+  }
+  std::vector<int> all(N);
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<int>* pool = &working;
   auto classify = [&](const std::vector<double>& p, double limit) {
     std::vector<int> in;
     const std::vector<Dual3> pd(p.begin(), p.end());
-    for (size_t i = 0; i < N; ++i) {
+    for (int i : *pool) {
       if (std::abs(Kind<E>::F(p.data(), pts[i].data())) >= limit) continue;
       if (Kind<E>::NormalCos(pd, pts[i], input_normals[i]) < options.normal_cos) continue;
       in.push_back(static_cast<int>(i));
@@ -228,8 +249,9 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<std::vector<double>> blocks;
   const int threads = options.num_threads > 0 ? options.num_threads
                                                : std::max(1u, std::thread::hardware_concurrency());
-  for (int round = 0; round < options.max_rounds; ++round) {
-    const size_t min_needed = std::max<size_t>(options.min_inliers, options.min_inlier_fraction * N);
+  bool final_stage = pool->size() == N;
+  for (int round = 0; round < options.max_rounds + 3; ++round) {
+    const size_t min_needed = std::max<size_t>(options.min_inliers, options.min_inlier_fraction * pool->size());
     if (inliers.size() < min_needed) {
       result.message = "too few inliers: " + std::to_string(inliers.size()) + " of " + std::to_string(N) +
                        " points (need " + std::to_string(min_needed) + ")";
@@ -267,7 +289,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
       }
     }
     ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_QR;
+    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solver_options.num_threads = threads;
     solver_options.max_num_iterations = 50;
     solver_options.function_tolerance = 1e-10;
@@ -287,8 +309,19 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     result.sigma = 1.4826 * Median(abs_r);
     band = std::max(options.band_sigmas * result.sigma, 1e-12);
     std::vector<int> next = classify(params, band);
-    if (next == inliers) break;
+    // Stable: the inlier set changed by at most 0.2% (points flickering at the band's edge move
+    // the solution by far less than its standard deviation).
+    std::vector<int> changed;
+    std::set_symmetric_difference(next.begin(), next.end(), inliers.begin(), inliers.end(),
+                                  std::back_inserter(changed));
+    const bool stable = changed.size() <= options.stable_fraction * inliers.size();
     inliers = std::move(next);
+    if (stable || round + 1 == options.max_rounds) {
+      if (final_stage) break;
+      final_stage = true;  // switch to every point
+      pool = &all;
+      inliers = classify(params, band);
+    }
   }
 
   // 3. Figures and uncertainties.
@@ -356,7 +389,9 @@ bool PrimitiveFitOptions::IsValid(std::string* error) const {
   if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder || k == NodeType::kCone ||
         k == NodeType::kTorus))
     return fail(std::string("cannot fit a ") + NodeTypeName(k) + " with the primitive fitter");
-  if (hypotheses < 1) return fail("hypotheses must be >= 1");
+  if (hypotheses < 1 || min_hypotheses < 1) return fail("hypotheses and min_hypotheses must be >= 1");
+  if (!(confidence > 0 && confidence < 1)) return fail("confidence must be in (0, 1)");
+  if (score_subsample < 10 || working_subsample < 10) return fail("subsamples must hold >= 10 points");
   if (!(normal_cos >= 0 && normal_cos <= 1)) return fail("normal_cos must be in [0, 1]");
   if (!(band_sigmas > 0)) return fail("band_sigmas must be > 0");
   for (const auto& [name, value] : fixed) {

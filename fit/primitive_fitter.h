@@ -8,7 +8,8 @@
 //    orthogonal distances f(x_i) (every primitive's f is an exact signed distance) over the
 //    current inlier set, in Ceres with batched residual blocks (fit/batched_distance_cost.h);
 //    then the noise scale is re-estimated as sigma = 1.4826 median |f| of the inliers and the
-//    inlier band reset to |f| < band_sigmas * sigma; repeated until the inlier set is stable.
+//    inlier band reset to |f| < band_sigmas * sigma; repeated until the inlier set is stable,
+//    first on a random working subset of the points, then on all of them.
 //    Axes and normals live on ceres::SphereManifold<3>; radii are bounded below by 0 and the
 //    cone angle to (0, pi/2) inside the solver (never clipped afterwards).
 // 3. Parameter standard deviations from ceres::Covariance at the solution, scaled by the
@@ -29,12 +30,16 @@ namespace implicitfit {
 struct PrimitiveFitOptions {
   NodeType kind = NodeType::kSphere;     // plane, sphere, cylinder, cone or torus
   unsigned seed = 1;                     // RNG seed: the fit is deterministic for a given seed
-  int hypotheses = 400;                  // minimal-sample hypotheses tried
+  int hypotheses = 400;                  // most minimal-sample hypotheses tried
+  int min_hypotheses = 30;               // fewest tried (adaptive stopping below)
+  double confidence = 0.999;             // stop once an all-inlier sample was drawn this surely
   int score_subsample = 2000;            // points used to score hypotheses
+  int working_subsample = 5000;          // points of the coarse refinement rounds
   double threshold = 0.0;                // initial inlier band tau; <= 0: 1% of the bbox diagonal
   double normal_cos = 0.8;               // inlier normal agreement |cos| (used when normals exist)
   double band_sigmas = 3.0;              // final inlier band in units of the estimated sigma
   int max_rounds = 8;                    // refit / re-classify rounds
+  double stable_fraction = 0.002;        // inlier set "stable" when at most this fraction changed
   int min_inliers = 20;                  // fewer: the fit fails
   double min_inlier_fraction = 0.02;     // fewer than this fraction of the points: the fit fails
   int num_threads = 0;                   // Ceres threads; 0 = hardware concurrency
