@@ -19,6 +19,25 @@ size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points, const E
   return flipped;
 }
 
+namespace {
+
+constexpr size_t kMstNeighbours = 8;
+
+// Agreement of n_j with n_i mirrored across the plane halfway between p_i and p_j (König &
+// Gumhold 2009): the mirror image of n_i is exactly n_j for two points of a sphere, and for
+// the two sides of a symmetric crease or of a thin sheet, where the plain n_i . n_j misleads.
+double Agreement(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals, int i,
+                 int j) {
+  const Eigen::Vector3d e = points[j] - points[i];
+  const double length = e.norm();
+  if (length == 0.0) return normals[i].dot(normals[j]);
+  const Eigen::Vector3d u = e / length;
+  const Eigen::Vector3d mirrored = normals[i] - 2.0 * normals[i].dot(u) * u;
+  return mirrored.dot(normals[j]);
+}
+
+}  // namespace
+
 // Prim's algorithm with a binary heap, written out (~30 lines) rather than pulling in
 // Boost.Graph: the graph is the neighbour lists as they are, made symmetric here.
 size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
@@ -28,14 +47,11 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
   std::vector<Eigen::Vector3d>& nrm = *normals;
   std::vector<std::vector<int>> graph(n);
   for (size_t i = 0; i < n; ++i)
-    for (int j : neighbours[i]) {
+    for (size_t k = 0; k < neighbours[i].size() && k < kMstNeighbours; ++k) {
+      const int j = neighbours[i][k];
       graph[i].push_back(j);
       graph[j].push_back(static_cast<int>(i));
     }
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) centroid += p;
-  centroid /= std::max<double>(1.0, static_cast<double>(n));
-
   // Seeds in decreasing x: the first unvisited one is the max-x point of its component.
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -47,9 +63,7 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   for (int seed : order) {
     if (done[seed]) continue;
-    const Eigen::Vector3d out = points[seed] - centroid;
-    const double guess = out.norm() > 0 ? nrm[seed].dot(out) : nrm[seed].x();
-    if (guess < 0) {
+    if (nrm[seed].x() < 0) {
       nrm[seed] = -nrm[seed];
       ++flipped;
     }
@@ -59,12 +73,12 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
       heap.pop();
       if (done[v]) continue;
       done[v] = 1;
-      if (v != parent && nrm[v].dot(nrm[parent]) < 0) {
+      if (v != parent && Agreement(points, nrm, parent, v) < 0) {
         nrm[v] = -nrm[v];
         ++flipped;
       }
       for (int w : graph[v])
-        if (!done[w]) heap.push({1.0 - std::abs(nrm[v].dot(nrm[w])), {w, v}});
+        if (!done[w]) heap.push({1.0 - std::abs(Agreement(points, nrm, v, w)), {w, v}});
     }
   }
   return flipped;

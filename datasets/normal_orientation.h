@@ -5,11 +5,18 @@
 // - Toward a viewpoint v (the scanner): n_i is flipped when n_i . (v - p_i) < 0, so every normal
 //   faces the sensor that saw its point.
 // - Minimum spanning tree propagation (Hoppe, DeRose, Duchamp, McDonald, Stuetzle 1992, §3.3):
-//   over the symmetric neighbour graph with edge cost 1 - |n_i . n_j|, grow a minimum spanning
-//   tree (Prim) from a seed and flip each newly reached normal that opposes its tree parent,
-//   so orientation travels along the smoothest paths first. Each connected component is seeded
-//   at its point of largest x whose normal gets the outward guess n . (p - c) > 0, c the
-//   centroid of the cloud (for the max-x point, p - c points out of the shape).
+//   over the symmetric graph of each point's 8 nearest neighbours (a sparse graph, as Hoppe's
+//   Riemannian graph; wider ones bridge thin gaps between surfaces) with edge cost 1 - |a_ij|, grow a minimum spanning tree
+//   (Prim) from a seed and flip each newly reached normal n_j whose agreement a_ij with its
+//   tree parent is negative, so orientation travels along the most reliable edges first.
+//   Hoppe uses a_ij = n_i . n_j; here a_ij = (M n_i) . n_j with M the reflection across the
+//   plane bisecting p_i p_j (König & Gumhold, "Consistent propagation of normal orientations
+//   in point clouds", VMV 2009): exact for two points of a sphere, and right across symmetric
+//   creases and between the two sides of thin sheets, where n_i . n_j has the wrong sign. Each connected component is seeded
+//   at its point of largest x, whose normal gets the outward guess n_x >= 0 (at the extreme
+//   point in x of a closed shape, the outward normal is +x).
+//   Known limit: surfaces that pass through each other (two overlapping full spheres, as in
+//   cgal_spheres_10.ply) can come out with one of them inverted.
 // - Detector: the fraction of neighbour pairs with nearly parallel lines (|n_i . n_j| > 0.5)
 //   whose normals oppose (n_i . n_j < 0). About 0 for oriented normals of a surface sampled
 //   finer than its thickness and curvature; about 0.5 for random signs.
