@@ -11,6 +11,7 @@ namespace implicitfit {
 using CommandAction = std::function<int()>;
 
 CommandAction AddEvalCommand(CLI::App& app);
+CommandAction AddCheckCommand(CLI::App& app);
 CommandAction AddNotYetAvailableCommand(CLI::App& app, const std::string& name,
                                         const std::string& description);
 

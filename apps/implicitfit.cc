@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   std::map<std::string, CommandAction> actions;
   actions["fit"] = AddNotYetAvailableCommand(app, "fit", "Fit a model to a cloud");
   actions["eval"] = AddEvalCommand(app);
-  actions["check"] = AddNotYetAvailableCommand(app, "check", "Convexity certificate of Bernstein patches");
+  actions["check"] = AddCheckCommand(app);
   actions["sample"] = AddNotYetAvailableCommand(app, "sample", "Sample oriented points on a model");
   actions["batch"] = AddNotYetAvailableCommand(app, "batch", "Fit many clouds");
 

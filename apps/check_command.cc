@@ -1,0 +1,152 @@
+// implicitfit check MODEL.json... [--json] [--sample N] — the convexity certificate of every
+// Bernstein patch in every file (model/convexity_certificate.h). Exit 0 when every patch is
+// certified convex, 1 when some is not (or when --sample contradicts a certificate), 2 when a
+// file is unreadable or invalid (all files are read before anything is printed).
+// --json prints {"convex", "files": [{"file", "convex", "patches": [{"degree", "convex",
+// "min_eigenvalue"}]}]} (DESIGN.md); --sample N adds a "sample" object per patch and a summary.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/command.h"
+#include "datasets/model_file.h"
+#include "model/convexity_certificate.h"
+#include "model/tangent_plane_test.h"
+
+namespace implicitfit {
+namespace {
+
+struct CheckOptions {
+  std::vector<std::string> files;
+  bool json = false;
+  int sample = 0;  // segments per patch for the tangent-plane test; 0: off
+};
+
+struct PatchReport {
+  std::string label;
+  int degree = 0;
+  ConvexityCertificate certificate;
+  TangentPlaneTestResult sample;
+};
+
+struct SampleSummary {
+  int contradictions = 0;  // certified convex, yet sampling found a violation (must stay 0)
+  int conservative = 0;    // not certified, sampling found no violation on >= 2 zero points
+  int confirmed = 0;       // not certified, sampling found a violation
+  int undecided = 0;       // not certified, fewer than 2 zero points found
+};
+
+int Run(const CheckOptions& options) {
+  std::vector<Model> models;
+  for (const std::string& file : options.files) models.push_back(ReadModelFile(file));
+
+  bool all_convex = true;
+  SampleSummary summary;
+  std::vector<std::vector<PatchReport>> reports(models.size());
+  for (size_t f = 0; f < models.size(); ++f) {
+    const Model& model = models[f];
+    for (size_t n = 0; n < model.nodes().size(); ++n) {
+      const ModelNode& node = model.nodes()[n];
+      if (node.type != NodeType::kBernsteinPatch) continue;
+      PatchReport r;
+      r.label = model.NodeLabel(static_cast<int>(n));
+      r.degree = node.degree;
+      const double* b = model.parameters().data() + node.first_parameter;
+      r.certificate = CertifyConvexity(node.degree, b);
+      all_convex &= r.certificate.convex;
+      if (options.sample > 0) {
+        TangentPlaneTestOptions sample_options;
+        sample_options.segments = options.sample;
+        r.sample = TangentPlaneTest(node.degree, node.tetrahedron, b, sample_options);
+        if (r.certificate.convex && r.sample.violations > 0) {
+          ++summary.contradictions;
+          std::cerr << "implicitfit check: " << options.files[f] << ": " << r.label
+                    << ": certified convex but sampling found " << r.sample.violations
+                    << " tangent-plane violations (a bug: please report)\n";
+        } else if (!r.certificate.convex) {
+          if (r.sample.violations > 0) ++summary.confirmed;
+          else if (r.sample.zero_points >= 2) ++summary.conservative;
+          else ++summary.undecided;
+        }
+      }
+      reports[f].push_back(r);
+    }
+    if (reports[f].empty())
+      std::cerr << "implicitfit check: " << options.files[f]
+                << ": no Bernstein patches (nothing to certify)\n";
+  }
+
+  if (options.json) {
+    using ojson = nlohmann::ordered_json;
+    ojson out;
+    out["convex"] = all_convex;
+    out["files"] = ojson::array();
+    for (size_t f = 0; f < models.size(); ++f) {
+      ojson file;
+      file["file"] = options.files[f];
+      bool convex = true;
+      ojson patches = ojson::array();
+      for (const PatchReport& r : reports[f]) {
+        convex &= r.certificate.convex;
+        ojson p;
+        p["degree"] = r.degree;
+        p["convex"] = r.certificate.convex;
+        p["min_eigenvalue"] = r.certificate.min_eigenvalue;
+        if (options.sample > 0)
+          p["sample"] = {{"zero_points", r.sample.zero_points},
+                         {"violations", r.sample.violations},
+                         {"worst_excursion", r.sample.worst_excursion}};
+        patches.push_back(p);
+      }
+      file["convex"] = convex;
+      file["patches"] = patches;
+      out["files"].push_back(file);
+    }
+    if (options.sample > 0)
+      out["sample"] = {{"segments_per_patch", options.sample},
+                       {"contradictions", summary.contradictions},
+                       {"conservative", summary.conservative},
+                       {"confirmed", summary.confirmed},
+                       {"undecided", summary.undecided}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::printf("%-24s %-28s %6s %6s %15s", "file", "patch", "degree", "convex", "min_eigenvalue");
+    if (options.sample > 0) std::printf(" %11s %10s", "zero_points", "violations");
+    std::printf("\n");
+    for (size_t f = 0; f < models.size(); ++f)
+      for (const PatchReport& r : reports[f]) {
+        std::printf("%-24s %-28s %6d %6s %15.6g", options.files[f].c_str(), r.label.c_str(),
+                    r.degree, r.certificate.convex ? "yes" : "no", r.certificate.min_eigenvalue);
+        if (options.sample > 0) std::printf(" %11d %10d", r.sample.zero_points, r.sample.violations);
+        std::printf("\n");
+      }
+    std::printf("%s\n", all_convex ? "all patches certified convex"
+                                   : "some patches are not certified convex");
+    if (options.sample > 0)
+      std::printf(
+          "sampling (%d segments per patch): %d contradictions, %d not certified but no violation "
+          "found (conservative), %d not certified and a violation found, %d undecided\n",
+          options.sample, summary.contradictions, summary.conservative, summary.confirmed,
+          summary.undecided);
+  }
+  return all_convex && summary.contradictions == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+CommandAction AddCheckCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand("check", "Convexity certificate of every Bernstein patch");
+  auto options = std::make_shared<CheckOptions>();
+  cmd->add_option("MODEL", options->files, "Model files (JSON)")->required();
+  cmd->add_flag("--json", options->json, "Print the report as JSON");
+  cmd->add_option("--sample", options->sample,
+                  "Second opinion: tangent-plane test on the zero set along N random segments "
+                  "per patch")
+      ->check(CLI::Range(1, 100000000));
+  return [options]() { return Run(*options); };
+}
+
+}  // namespace implicitfit
