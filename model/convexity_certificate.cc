@@ -40,13 +40,13 @@ ConvexityCertificate CertifyConvexity(int k, const double* control_points) {
   for (int s1 = 0; s1 <= m; ++s1)
     for (int s2 = 0; s2 <= s1; ++s2)
       for (int m4 = 0; m4 <= s2; ++m4) {
-        double a[6], eig[3];
+        double a[6];
         GuoMatrix(k, control_points, s1 - s2, s2 - m4, m4, a);
-        SymmetricEigenvalues3(a, eig);
+        const double lmin = SymmetricMinEigenvalue3(a);
         const double frobenius = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] +
                                            2.0 * (a[3] * a[3] + a[4] * a[4] + a[5] * a[5]));
-        if (!(eig[0] > kConvexityTolerance * frobenius)) result.convex = false;
-        if (std::isnan(eig[0]) || eig[0] < result.min_eigenvalue) result.min_eigenvalue = eig[0];
+        if (!(lmin > kConvexityTolerance * frobenius)) result.convex = false;
+        if (std::isnan(lmin) || lmin < result.min_eigenvalue) result.min_eigenvalue = lmin;
         ++result.num_matrices;
       }
   return result;

@@ -20,9 +20,8 @@ inline double Form(const double m[3][3], const double* x, const double* y) {
   return s;
 }
 
-}  // namespace
-
-void SymmetricEigenvalues3(const double a[6], double out[3]) {
+// min_only: out[0] only (skips the deflation when the smallest root is the isolated one).
+void Eigenvalues(const double a[6], double out[3], bool min_only) {
   double scale = 0.0;
   for (int i = 0; i < 6; ++i) scale = std::max(scale, std::abs(a[i]));
   if (!(scale > 0.0) || !std::isfinite(scale)) {
@@ -52,6 +51,10 @@ void SymmetricEigenvalues3(const double a[6], double out[3]) {
   constexpr double kTwoThirdsPi = 2.0943951023931954923;
   // Isolated root (shifted): the largest when r >= 0, the smallest when r < 0.
   const double iso = r >= 0.0 ? 2.0 * p * std::cos(phi) : 2.0 * p * std::cos(phi + kTwoThirdsPi);
+  if (min_only && r < 0.0) {
+    out[0] = (iso + q) * scale;
+    return;
+  }
   // Its eigenvector: largest cross product of two rows of B - iso I.
   double m[3][3];
   for (int i = 0; i < 3; ++i)
@@ -82,7 +85,9 @@ void SymmetricEigenvalues3(const double a[6], double out[3]) {
     for (double& x : u) x *= un;
     Cross(v, u, w);
     const double m00 = Form(b, u, u), m11 = Form(b, w, w), m01 = Form(b, u, w);
-    const double mean = 0.5 * (m00 + m11), d = std::hypot(0.5 * (m00 - m11), m01);
+    // |entries| <= 1 after scaling: no overflow in the squares.
+    const double mean = 0.5 * (m00 + m11);
+    const double d = std::sqrt(0.25 * (m00 - m11) * (m00 - m11) + m01 * m01);
     lo = mean - d;
     hi = mean + d;
   } else {
@@ -98,5 +103,15 @@ void SymmetricEigenvalues3(const double a[6], double out[3]) {
   out[1] = (e[1] + q) * scale;
   out[2] = (e[2] + q) * scale;
 }
+
+}  // namespace
+
+double SymmetricMinEigenvalue3(const double a[6]) {
+  double out[3];
+  Eigenvalues(a, out, true);
+  return out[0];
+}
+
+void SymmetricEigenvalues3(const double a[6], double out[3]) { Eigenvalues(a, out, false); }
 
 }  // namespace implicitfit

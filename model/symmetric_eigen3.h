@@ -17,5 +17,7 @@ namespace implicitfit {
 
 // a = {a00, a11, a22, a01, a02, a12}; out: the three eigenvalues in ascending order.
 void SymmetricEigenvalues3(const double a[6], double out[3]);
+// The smallest eigenvalue only (the same value as out[0] above, sometimes cheaper).
+double SymmetricMinEigenvalue3(const double a[6]);
 
 }  // namespace implicitfit

@@ -19,6 +19,7 @@ void ExpectMatchesEigen(const Eigen::Matrix3d& a, double relative) {
   SymmetricEigenvalues3(packed, got);
   const Eigen::Vector3d expected = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(a).eigenvalues();
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], expected[i], relative * a.norm()) << a;
+  EXPECT_NEAR(SymmetricMinEigenvalue3(packed), expected[0], relative * a.norm()) << a;
 }
 
 using testsupport::RandomSymmetric;
