@@ -1,0 +1,39 @@
+// Fits every free parameter of a given model tree (fit --init): primitive parameters, delta and
+// epsilon of every blend, control points of Bernstein patches; fields listed in a node's
+// "fixed" are kept. Parameterisation: fit/tree_parameters.h (0 < epsilon <= delta by
+// construction, unit axes on SphereManifold<3>, positive radii). Residuals:
+// fit/tree_point_residual.h, one block per point with a Cauchy loss.
+// Two passes: the first with the loss scale 1% of the cloud's bounding-box diagonal, then the
+// noise scale sigma = 1.4826 median |r_0| and a second pass with the loss scale 2 sigma.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct TreeFitOptions {
+  double normal_weight = 0.1;   // w of the normal residuals (units of distance per unit vector)
+  int max_iterations = 200;     // Ceres iterations per pass
+  int num_threads = 0;          // 0 = hardware concurrency
+};
+
+struct TreeFitResult {
+  bool success = false;
+  std::string message;
+  Model model;                  // the fitted tree (same structure as the initial one)
+  double rms = 0.0;             // RMS geometric distance of the inliers (|r_0| < 3 sigma)
+  double sigma = 0.0;           // robust noise scale
+  int inliers = 0;
+  double mean_normal_angle_deg = -1.0;
+  int iterations = 0;
+  double seconds = 0.0;
+};
+
+TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<Eigen::Vector3d>& normals, const TreeFitOptions& options);
+
+}  // namespace implicitfit

@@ -1,0 +1,93 @@
+#include "fit/tree_parameters.h"
+
+#include <ceres/sphere_manifold.h>
+
+#include <algorithm>
+#include <string>
+
+namespace implicitfit {
+
+TreeParameters::TreeParameters(const Model& model) {
+  const std::vector<double>& p = model.parameters();
+  entries_.resize(p.size());
+  for (const ModelNode& node : model.nodes()) {
+    auto is_fixed = [&node](const std::string& f) {
+      return std::find(node.fixed.begin(), node.fixed.end(), f) != node.fixed.end();
+    };
+    int k = node.first_parameter;
+    const int delta_flat = node.first_parameter;  // operators: [delta, epsilon]
+    for (const ParameterField& field : ParameterFieldsOf(node)) {
+      const std::string name = field.name;
+      Kind kind = Kind::kPlain;
+      if (name == "axis" || name == "normal") kind = Kind::kDirection;
+      if (name == "radius" || name == "major_radius" || name == "minor_radius" || name == "radii")
+        kind = Kind::kPositive;
+      if (name == "half_angle") kind = Kind::kAngle;
+      if (name == "delta") kind = Kind::kDeltaLog;
+      if (name == "epsilon") kind = Kind::kEpsilonLogit;
+      if (is_fixed(name)) {
+        for (int j = 0; j < field.size; ++j) entries_[k + j].fixed_value = p[k + j];
+        k += field.size;
+        continue;
+      }
+      std::vector<double> init(p.begin() + k, p.begin() + k + field.size);
+      if (kind == Kind::kDeltaLog) {
+        const bool epsilon_fixed = is_fixed("epsilon");
+        init[0] = std::log(epsilon_fixed ? std::max(p[k] - p[k + 1], 1e-12 * p[k]) : p[k]);
+        if (epsilon_fixed) {
+          entries_[k].delta_flat = k + 1;
+          entries_[k + 1].fixed_value = p[k + 1];
+        }
+      }
+      if (kind == Kind::kEpsilonLogit) {
+        const double ratio = std::clamp(p[k] / p[delta_flat], 1e-9, 1.0 - 1e-9);
+        init[0] = std::log(ratio / (1.0 - ratio));
+        entries_[k].delta_flat = delta_flat;
+      }
+      if (kind == Kind::kDirection) {
+        double n = 0;
+        for (double v : init) n += v * v;
+        for (double& v : init) v /= std::sqrt(n);
+      }
+      const int block = static_cast<int>(blocks_.size());
+      for (int j = 0; j < field.size; ++j) {
+        entries_[k + j].block = block;
+        entries_[k + j].offset = j;
+        entries_[k + j].kind = kind;
+        if (kind == Kind::kEpsilonLogit) entries_[k + j].delta_flat = delta_flat;
+      }
+      blocks_.push_back(init);
+      block_sizes_.push_back(field.size);
+      block_kinds_.push_back(kind);
+      k += field.size;
+    }
+  }
+}
+
+void TreeParameters::Configure(ceres::Problem* problem) {
+  for (size_t b = 0; b < blocks_.size(); ++b) {
+    double* block = blocks_[b].data();
+    if (!problem->HasParameterBlock(block)) continue;
+    switch (block_kinds_[b]) {
+      case Kind::kDirection: problem->SetManifold(block, new ceres::SphereManifold<3>()); break;
+      case Kind::kPositive:
+        for (int j = 0; j < block_sizes_[b]; ++j) problem->SetParameterLowerBound(block, j, 1e-12);
+        break;
+      case Kind::kAngle:
+        problem->SetParameterLowerBound(block, 0, 1e-6);
+        problem->SetParameterUpperBound(block, 0, M_PI / 2 - 1e-6);
+        break;
+      default: break;
+    }
+  }
+}
+
+std::vector<double> TreeParameters::ToFlat() const {
+  std::vector<const double*> ptrs;
+  for (const auto& b : blocks_) ptrs.push_back(b.data());
+  std::vector<double> flat(entries_.size());
+  ToFlat(ptrs.data(), flat.data());
+  return flat;
+}
+
+}  // namespace implicitfit
