@@ -21,13 +21,14 @@ PointCloud ReadByExtension(const std::string& path, CloudFileInfo* info) {
   std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == "xyz" || ext == "pwn" || ext == "txt") return ReadXyzFile(path, info);
+  if (ext == "xyzl") return ReadXyzFile(path, info, XyzColumns::kLabelled);
 #ifdef IMPLICITFIT_HAVE_PCL
   if (ext == "ply") return ReadPlyFile(path, info);
   if (ext == "pcd") return ReadPcdFile(path, info);
-  throw FileError(path, "unsupported cloud format '." + ext + "' (supported: .xyz .pwn .txt .ply .pcd)");
+  throw FileError(path, "unsupported cloud format '." + ext + "' (supported: .xyz .pwn .txt .xyzl .ply .pcd)");
 #else
   throw FileError(path, "unsupported cloud format '." + ext +
-                            "' (supported: .xyz .pwn .txt; .ply and .pcd need a build with PCL)");
+                            "' (supported: .xyz .pwn .txt .xyzl; .ply and .pcd need a build with PCL)");
 #endif
 }
 

@@ -1,4 +1,5 @@
-// Reads any supported cloud by its extension: .xyz/.pwn/.txt (plain text, xyz_reader.h),
+// Reads any supported cloud by its extension: .xyz/.pwn/.txt and labelled .xyzl (plain text,
+// xyz_reader.h),
 // .ply (ply_reader.h) and .pcd (pcd_reader.h), the last two only when built with PCL. Other
 // extensions are refused with InputError naming the file and the supported list.
 // The returned normals are empty or one unit vector per point: normals that were NaN, infinite

@@ -32,6 +32,9 @@ struct CloudFileInfo {
   // Per-point properties present in the file and deliberately not used (colour, intensity,
   // labels, curvature, ...).
   std::vector<std::string> ignored_properties;
+  // Per-point integer labels of labelled text clouds (.xyzl: "x y z label", e.g. the Fit4CAD
+  // primitive number); empty for other formats.
+  std::vector<int> labels;
 };
 
 }  // namespace implicitfit

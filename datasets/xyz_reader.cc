@@ -15,11 +15,13 @@ bool IsSeparator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\r'
 
 }  // namespace
 
-PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudFileInfo* info) {
+PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudFileInfo* info,
+                        XyzColumns layout) {
   CloudFileInfo local;
   CloudFileInfo& out = info ? *info : local;
   out = CloudFileInfo();
-  out.format = "xyz";
+  const bool labelled = layout == XyzColumns::kLabelled;
+  out.format = labelled ? "xyzl" : "xyz";
   PointCloud cloud;
   int columns = 0;
   long line_number = 0;
@@ -36,7 +38,7 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudF
     if (p == line_end || *p == '#') continue;
     int count = 0;
     while (p < line_end) {
-      if (count == 7) throw LineError(name, line_number, "expected 3 or 6 numbers, found more than 6");
+      if (count == 7) throw LineError(name, line_number, std::string(labelled ? "expected 4 numbers" : "expected 3 or 6 numbers") + ", found more than 6");
       // strtod needs a terminated token: copy it (tokens are short).
       const char* token_end = p;
       while (token_end < line_end && !IsSeparator(*token_end)) ++token_end;
@@ -52,7 +54,9 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudF
       p = token_end;
       while (p < line_end && IsSeparator(*p)) ++p;
     }
-    if (count != 3 && count != 6)
+    if (labelled && count != 4)
+      throw LineError(name, line_number, "expected 4 numbers (x y z label), found " + std::to_string(count));
+    if (!labelled && count != 3 && count != 6)
       throw LineError(name, line_number,
                       "expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(count));
     if (columns == 0) columns = count;
@@ -61,7 +65,11 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudF
                       "found " + std::to_string(count) + " numbers where earlier lines have " +
                           std::to_string(columns));
     cloud.points.emplace_back(values[0], values[1], values[2]);
-    if (count == 6) {
+    if (labelled) {
+      if (values[3] != std::floor(values[3]) || std::abs(values[3]) > 1e9)
+        throw LineError(name, line_number, "the label must be an integer");
+      out.labels.push_back(static_cast<int>(values[3]));
+    } else if (count == 6) {
       AddFileNormal(Eigen::Vector3d(values[3], values[4], values[5]), &cloud, &out);
     }
   }
@@ -71,8 +79,8 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudF
   return cloud;
 }
 
-PointCloud ReadXyzFile(const std::string& path, CloudFileInfo* info) {
-  return ParseXyzText(ReadTextFile(path), path, info);
+PointCloud ReadXyzFile(const std::string& path, CloudFileInfo* info, XyzColumns layout) {
+  return ParseXyzText(ReadTextFile(path), path, info, layout);
 }
 
 }  // namespace implicitfit

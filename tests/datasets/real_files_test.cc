@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 
 #include "datasets/cloud_file.h"
@@ -75,6 +78,52 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
       return name;
     });
+
+struct Fit4Cad {
+  const char* name;  // folder fit4cad_<name>, files <name>.txt and <name>_primitives.txt
+  size_t points;     // README table
+};
+
+class Fit4CadFiles : public ::testing::TestWithParam<Fit4Cad> {};
+
+// The labelled copy fit4cad_<name>.xyzl: the README's point count, and each point's label is
+// one of the primitives whose list in <name>_primitives.txt (1-based indices) holds the point
+// (points on an intersection curve are listed under both primitives).
+TEST_P(Fit4CadFiles, LabelledCopyHasTheCountAndThePrimitiveLabels) {
+  REQUIRE_SHARED_DATA();
+  const Fit4Cad& f = GetParam();
+  CloudFileInfo info;
+  const std::string base = kData + "/fit4cad/fit4cad_" + f.name;
+  const PointCloud cloud = ReadCloudFile(base + ".xyzl", &info);
+  EXPECT_EQ(cloud.size(), f.points);
+  ASSERT_EQ(info.labels.size(), cloud.size());
+  std::ifstream in(base + "/" + f.name + "_primitives.txt");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::vector<int>> listed_under(cloud.size());
+  size_t pos = 0;
+  while ((pos = text.find("Primitive", pos)) != std::string::npos) {
+    const int label = std::stoi(text.substr(pos + 9));
+    const size_t open = text.find('[', pos), close = text.find(']', pos);
+    std::istringstream numbers(text.substr(open + 1, close - open - 1));
+    for (size_t index; numbers >> index;) {
+      ASSERT_GE(index, 1u);
+      ASSERT_LE(index, cloud.size());
+      listed_under[index - 1].push_back(label);
+    }
+    pos = close;
+  }
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const std::vector<int>& l = listed_under[i];
+    ASSERT_NE(std::find(l.begin(), l.end(), info.labels[i]), l.end()) << "point " << i + 1;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, Fit4CadFiles,
+                         ::testing::Values(Fit4Cad{"test_PC33", 1500}, Fit4Cad{"test_PC34", 12089},
+                                           Fit4Cad{"test_PC35", 24068}, Fit4Cad{"test_PC21", 1000},
+                                           Fit4Cad{"train_PC124", 17945}, Fit4Cad{"train_PC131", 15930},
+                                           Fit4Cad{"train_PC145", 1500}, Fit4Cad{"train_PC155", 20185}),
+                         [](const ::testing::TestParamInfo<Fit4Cad>& p) { return std::string(p.param.name); });
 
 TEST(RealFiles, OrganizedStereoScanDropsItsNanCellsAndKeepsTheViewpoint) {
   REQUIRE_SHARED_DATA();

@@ -51,5 +51,18 @@ TEST(XyzReader, ListsUnusableNormalsInsteadOfRefusingThem) {
   EXPECT_EQ(info.format, "xyz");
 }
 
+TEST(XyzReader, LabelledCloudsKeepTheirIntegerLabels) {
+  CloudFileInfo info;
+  const PointCloud c = ParseXyzText("1 2 3 4\n5 6 7 -1\n", "e.xyzl", &info, XyzColumns::kLabelled);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c.points[1], Eigen::Vector3d(5, 6, 7));
+  EXPECT_FALSE(c.has_normals());
+  EXPECT_EQ(info.labels, (std::vector<int>{4, -1}));
+  EXPECT_EQ(info.format, "xyzl");
+  EXPECT_THROW(ParseXyzText("1 2 3\n", "e.xyzl", &info, XyzColumns::kLabelled), InputError);
+  EXPECT_THROW(ParseXyzText("1 2 3 0.5\n", "e.xyzl", &info, XyzColumns::kLabelled), InputError);
+  EXPECT_THROW(ParseXyzText("1 2 3 4\n", "e.xyz"), InputError);
+}
+
 }  // namespace
 }  // namespace implicitfit
