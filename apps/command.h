@@ -12,6 +12,9 @@ using CommandAction = std::function<int()>;
 
 CommandAction AddEvalCommand(CLI::App& app);
 CommandAction AddCheckCommand(CLI::App& app);
+CommandAction AddFitCommand(CLI::App& app);
+CommandAction AddSampleCommand(CLI::App& app);
+CommandAction AddBatchCommand(CLI::App& app);
 CommandAction AddNotYetAvailableCommand(CLI::App& app, const std::string& name,
                                         const std::string& description);
 

@@ -20,11 +20,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   std::map<std::string, CommandAction> actions;
-  actions["fit"] = AddNotYetAvailableCommand(app, "fit", "Fit a model to a cloud");
+  actions["fit"] = AddFitCommand(app);
   actions["eval"] = AddEvalCommand(app);
   actions["check"] = AddCheckCommand(app);
-  actions["sample"] = AddNotYetAvailableCommand(app, "sample", "Sample oriented points on a model");
-  actions["batch"] = AddNotYetAvailableCommand(app, "batch", "Fit many clouds");
+  actions["sample"] = AddSampleCommand(app);
+  actions["batch"] = AddBatchCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -88,17 +88,31 @@ void DeCasteljauStep(int r, const T* tau, T* b) {
       }
 }
 
-// Reduces the control points to degree `stop` at tau; `work` receives n(stop) values.
+// Reduces the control points to degree `stop` at tau, in `work` (n(k) values; the first
+// n(stop) hold the result).
 template <typename T>
-void ReduceTo(int k, int stop, const T* control_points, const T* tau, std::vector<T>* work) {
-  const int n = static_cast<int>(NumBernsteinControlPoints(k));
-  work->assign(control_points, control_points + n);
-  for (int r = k; r > stop; --r) DeCasteljauStep(r, tau, work->data());
+void ReduceTo(int k, int stop, const T* control_points, const T* tau, T* work) {
+  const long long n = NumBernsteinControlPoints(k);
+  for (long long i = 0; i < n; ++i) work[i] = control_points[i];
+  for (int r = k; r > stop; --r) DeCasteljauStep(r, tau, work);
+}
+
+// Calls f(T* workspace of n(k) values): on the stack up to degree 4, else on the heap.
+constexpr int kStackControlPoints = 35;
+template <typename T, typename F>
+auto WithWorkspace(int k, F f) {
+  if (NumBernsteinControlPoints(k) <= kStackControlPoints) {
+    std::array<T, kStackControlPoints> stack;
+    return f(stack.data());
+  }
+  std::vector<T> heap(static_cast<size_t>(NumBernsteinControlPoints(k)));
+  return f(heap.data());
 }
 
 }  // namespace bernstein_detail
 
-struct BernsteinPatch {
+class BernsteinPatch {
+ public:
   // f(x). control_points: NumBernsteinControlPoints(k) values, DESIGN.md order.
   template <typename T>
   static T Evaluate(int k, const Tetrahedron& tet, const T* control_points, const T* x) {
@@ -109,9 +123,10 @@ struct BernsteinPatch {
 
   template <typename T>
   static T EvaluateBarycentric(int k, const T* control_points, const T* tau) {
-    std::vector<T> work;
-    bernstein_detail::ReduceTo(k, 0, control_points, tau, &work);
-    return work[0];
+    return bernstein_detail::WithWorkspace<T>(k, [&](T* work) {
+      bernstein_detail::ReduceTo(k, 0, control_points, tau, work);
+      return work[0];
+    });
   }
 
   // f, grad f (Cartesian) and, if hessian != nullptr, the Cartesian Hessian.
@@ -121,12 +136,21 @@ struct BernsteinPatch {
     T tau[4];
     tet.Barycentric(x, tau);
     const Eigen::Matrix<double, 4, 3> D = tet.BarycentricJacobian();
-    std::vector<T> w;
+    return bernstein_detail::WithWorkspace<T>(k, [&](T* work) {
+      return DerivativesIn(k, D, control_points, tau, work, gradient, hessian);
+    });
+  }
+
+ private:
+  template <typename T>
+  static T DerivativesIn(int k, const Eigen::Matrix<double, 4, 3>& D, const T* control_points,
+                         const T* tau, T* w, Eigen::Matrix<T, 3, 1>* gradient,
+                         Eigen::Matrix<T, 3, 3>* hessian) {
     if (hessian) {
       hessian->setZero();
       if (k >= 2) {
-        bernstein_detail::ReduceTo(k, 2, control_points, tau, &w);
-        Eigen::Matrix<T, 4, 4> h;
+        bernstein_detail::ReduceTo(k, 2, control_points, tau, w);
+        Eigen::Matrix<T, 4, 4> h;  // d2f/dtau_i dtau_j = k(k-1) b^2_{e_i+e_j}
         for (int i = 0; i < 4; ++i)
           for (int j = 0; j < 4; ++j) {
             int l[4] = {0, 0, 0, 0};
@@ -143,13 +167,13 @@ struct BernsteinPatch {
           }
       }
     }
-    bernstein_detail::ReduceTo(k, 1, control_points, tau, &w);
+    bernstein_detail::ReduceTo(k, 1, control_points, tau, w);  // df/dtau_i = k b^1_{e_i}
     for (int a = 0; a < 3; ++a) {
       T s = T(0.0);
       for (int i = 0; i < 4; ++i) s += D(i, a) * (double(k) * w[i]);
       (*gradient)(a) = s;
     }
-    bernstein_detail::DeCasteljauStep(1, tau, w.data());
+    bernstein_detail::DeCasteljauStep(1, tau, w);
     return w[0];
   }
 };

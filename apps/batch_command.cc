@@ -1,0 +1,101 @@
+// implicitfit batch INPUTS... [--manifest FILE]... --model KIND --out-dir DIR [--jobs N]
+//                  [--resume] [--shard i/N] [--seed s] [--threshold t] [--fix FIELD=V ...]
+// Fits one primitive per cloud (apps/batch_runner.h), inputs listed as in apps/batch_inputs.h.
+// Writes DIR/<name>.model.json and DIR/<name>.report.json per input, then DIR/summary.csv
+// (DIR/summary-<i>-of-<N>.csv with --shard, so shards can share DIR), and prints a human summary
+// naming the failures. Exit 0 all inputs ok, 1 some failed, 2 invalid usage (nothing fitted).
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "apps/batch_inputs.h"
+#include "apps/batch_progress.h"
+#include "apps/batch_runner.h"
+#include "apps/command.h"
+#include "apps/fit_job.h"
+#include "datasets/atomic_file.h"
+#include "datasets/io_error.h"
+
+namespace implicitfit {
+namespace {
+
+struct BatchArgs {
+  std::vector<std::string> inputs, manifests, fixes;
+  std::string kind, out_dir, shard;
+  int jobs = 0;
+  bool resume = false;
+  unsigned seed = 1;
+  double threshold = 0.0;
+};
+
+}  // namespace
+
+CommandAction AddBatchCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand("batch", "Fit one model per cloud over many clouds, in parallel, resumably");
+  auto a = std::make_shared<BatchArgs>();
+  cmd->add_option("INPUTS", a->inputs, "Cloud files and directories (every supported cloud directly inside)");
+  cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it)");
+  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus")->required();
+  cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
+  cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores)")->check(CLI::PositiveNumber);
+  cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
+  cmd->add_option("--shard", a->shard, "Only inputs with 0-based index k, k mod N = i - 1 (i is 1-based)");
+  cmd->add_option("--seed", a->seed, "Random seed, the same for every input (as `fit --seed`)");
+  cmd->add_option("--threshold", a->threshold, "Initial inlier band (default: 1% of each cloud's bounding-box diagonal)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--fix", a->fixes, "Keep a parameter constant in every fit, e.g. --fix radius=2");
+  return [a]() {
+    if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
+    const PrimitiveFitOptions fit = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+
+    const std::vector<BatchInput> all = ExpandBatchInputs(a->inputs, a->manifests);
+    if (all.empty()) throw InputError("no cloud files in the given inputs");
+    std::vector<BatchInput> inputs = all;
+    std::string summary_name = "summary.csv";
+    if (!a->shard.empty()) {
+      const Shard shard = ParseShard(a->shard);
+      inputs = SelectShard(all, shard);
+      summary_name = "summary-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".csv";
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(a->out_dir, ec);
+    if (!std::filesystem::is_directory(a->out_dir)) throw FileError(a->out_dir, "cannot create the output folder");
+
+    BatchOptions options;
+    options.out_dir = a->out_dir;
+    options.resume = a->resume;
+    options.jobs = a->jobs > 0 ? a->jobs : std::max(1u, std::thread::hardware_concurrency());
+    options.fit = fit;
+    options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
+
+    const auto start = std::chrono::steady_clock::now();
+    BatchProgress progress(inputs.size(), ::isatty(STDERR_FILENO) == 1);
+    const std::vector<BatchOutcome> outcomes =
+        RunBatch(inputs, options, [&](const BatchOutcome& o) { progress.Done(o); });
+    progress.Finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    WriteFileAtomically((std::filesystem::path(a->out_dir) / summary_name).string(), SummaryCsv(outcomes));
+
+    size_t ok = 0, skipped = 0, failed = 0, points = 0;
+    for (const BatchOutcome& o : outcomes) {
+      ok += o.status == BatchStatus::kOk;
+      skipped += o.status == BatchStatus::kSkipped;
+      failed += !o.Succeeded();
+      if (o.status != BatchStatus::kSkipped) points += o.points;
+    }
+    const size_t processed = outcomes.size() - skipped;
+    std::printf("batch: %zu inputs: %zu fitted, %zu skipped, %zu failed in %.2f s (%.2f inputs/s, %.0f points/s)\n",
+                outcomes.size(), ok, skipped, failed, seconds, seconds > 0 ? processed / seconds : 0.0,
+                seconds > 0 ? points / seconds : 0.0);
+    for (const BatchOutcome& o : outcomes)
+      if (!o.Succeeded()) std::printf("  %s %s: %s\n", BatchStatusName(o.status), o.input.c_str(), o.error.c_str());
+    std::printf("summary: %s\n", (std::filesystem::path(a->out_dir) / summary_name).c_str());
+    return failed > 0 ? 1 : 0;
+  };
+}
+
+}  // namespace implicitfit

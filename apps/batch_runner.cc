@@ -1,0 +1,161 @@
+#include "apps/batch_runner.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "apps/fit_job.h"
+#include "datasets/atomic_file.h"
+#include "datasets/model_file.h"
+
+namespace implicitfit {
+namespace fs = std::filesystem;
+namespace {
+
+std::string ModelPath(const BatchOptions& o, const BatchInput& in) {
+  return (fs::path(o.out_dir) / (in.name + ".model.json")).string();
+}
+std::string ReportPath(const BatchOptions& o, const BatchInput& in) {
+  return (fs::path(o.out_dir) / (in.name + ".report.json")).string();
+}
+
+// The figures of a complete earlier result, or false when it must be (re)fitted.
+bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, BatchOutcome* out) {
+  try {
+    const Model model = ReadModelFile(ModelPath(o, in));
+    if (model.root() < 0 || model.nodes()[model.root()].type != o.fit.kind) return false;
+    std::ifstream report_file(ReportPath(o, in));
+    if (!report_file) return false;
+    const nlohmann::json report = nlohmann::json::parse(report_file);
+    if (!report.value("success", false)) return false;
+    out->rms = report.at("rms_distance").get<double>();
+    out->inliers = report.at("inliers").get<size_t>();
+    out->points = report.at("points").get<size_t>();
+    return true;
+  } catch (const std::exception&) {
+    return false;  // missing, truncated or of another kind: fit again
+  }
+}
+
+std::string CsvField(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + "\"";
+}
+
+std::string Number(const char* format, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+}  // namespace
+
+const char* BatchStatusName(BatchStatus status) {
+  switch (status) {
+    case BatchStatus::kOk: return "ok";
+    case BatchStatus::kFailed: return "failed";
+    case BatchStatus::kError: return "error";
+    case BatchStatus::kSkipped: return "skipped";
+  }
+  return "error";
+}
+
+BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
+  BatchOutcome out;
+  out.input = in.path;
+  out.name = in.name;
+  if (o.resume && ReadCompleteOutputs(in, o, &out)) {
+    out.status = BatchStatus::kSkipped;
+    return out;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::string model_path = ModelPath(o, in), report_path = ReportPath(o, in);
+  std::error_code ignored;
+  try {
+    const CloudFit fit = FitCloudFile(in.path, o.fit);
+    out.points = fit.points;
+    out.rms = fit.result.rms;
+    out.inliers = fit.result.inliers.size();
+    if (fit.result.success) {
+      WriteModelFile(fit.result.ToModel(o.fit.kind), model_path);
+      out.status = BatchStatus::kOk;
+    } else {
+      fs::remove(model_path, ignored);
+      out.status = BatchStatus::kFailed;
+      out.error = std::string(NodeTypeName(o.fit.kind)) + " fit failed: " + fit.result.message;
+    }
+    WriteFileAtomically(report_path, fit.report.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    fs::remove(model_path, ignored);
+    fs::remove(report_path, ignored);
+    out.status = BatchStatus::kError;
+    out.error = e.what();
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir) {
+  std::set<std::string> prefixes;
+  for (const BatchInput& in : inputs) {
+    prefixes.insert(in.name + ".model.json.tmp.");
+    prefixes.insert(in.name + ".report.json.tmp.");
+  }
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string file = it->path().filename().string();
+    const size_t tmp = file.rfind(".tmp.");
+    if (tmp != std::string::npos && prefixes.count(file.substr(0, tmp + 5))) stale.push_back(it->path());
+  }
+  for (const fs::path& p : stale) fs::remove(p, ec);
+}
+
+std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+                                   const BatchProgressCallback& on_done) {
+  RemoveStaleTemporaries(inputs, options.out_dir);
+  std::vector<BatchOutcome> outcomes(inputs.size());
+  std::atomic<size_t> next{0};
+  std::mutex report_mutex;
+  const auto worker = [&]() {
+    for (size_t i = next++; i < inputs.size(); i = next++) {
+      outcomes[i] = ProcessBatchInput(inputs[i], options);
+      std::lock_guard<std::mutex> lock(report_mutex);
+      if (on_done) on_done(outcomes[i]);
+    }
+  };
+  const size_t threads = std::max<size_t>(1, std::min<size_t>(options.jobs, inputs.size()));
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return outcomes;
+}
+
+std::string SummaryCsv(const std::vector<BatchOutcome>& outcomes) {
+  std::ostringstream csv;
+  csv << "input,status,rms,inliers,points,seconds,error\n";
+  for (const BatchOutcome& o : outcomes) {
+    csv << CsvField(o.input) << ',' << BatchStatusName(o.status) << ',';
+    if (o.HasFigures())
+      csv << Number("%.9g", o.rms) << ',' << o.inliers << ',' << o.points << ',';
+    else
+      csv << ",,,";
+    csv << Number("%.3f", o.seconds) << ',' << CsvField(o.error) << '\n';
+  }
+  return csv.str();
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,67 @@
+// Runs `implicitfit batch`: one primitive fit per input cloud (apps/fit_job.h), each input on its
+// own, over a bounded pool of threads that take the next input as they finish (dynamic load
+// balancing; a cloud is read only when its job starts, so memory is bounded by the pool).
+// For an input named <name> (apps/batch_inputs.h) in out_dir:
+//   ok       <name>.model.json and <name>.report.json (the `fit --report` content) are written,
+//            each atomically (temporary name, then rename: a kill -9 leaves no partial file);
+//   failed   the fit gave a negative result (e.g. too few inliers): the report (success false)
+//            is written, no model (a stale model of an earlier run is removed);
+//   error    the cloud could not be read or an output not written: no model, no report;
+//   skipped  (resume) the model and report of an earlier run are complete: the model parses
+//            and is of the requested kind, the report parses and says success. Nothing is
+//            refitted; failed and error inputs are retried.
+// Temporaries left by a killed run (<name>.*.json.tmp.<pid>) are removed before the run.
+// The summary (SummaryCsv) has one row per input, in input order:
+//   input,status,rms,inliers,points,seconds,error
+// rms/inliers/points from the fit (for skipped inputs from the earlier report; empty for error),
+// seconds the wall time spent on the input in this run (0 when skipped), error the message.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "apps/batch_inputs.h"
+#include "fit/primitive_fitter.h"
+
+namespace implicitfit {
+
+enum class BatchStatus { kOk, kFailed, kError, kSkipped };
+const char* BatchStatusName(BatchStatus status);
+
+struct BatchOutcome {
+  std::string input, name;           // the cloud path and its output name
+  BatchStatus status = BatchStatus::kError;
+  double rms = 0.0;
+  size_t inliers = 0, points = 0;
+  double seconds = 0.0;              // wall time in this run
+  std::string error;                 // why it failed (empty when ok or skipped)
+  bool HasFigures() const { return status != BatchStatus::kError; }
+  bool Succeeded() const { return status == BatchStatus::kOk || status == BatchStatus::kSkipped; }
+};
+
+struct BatchOptions {
+  PrimitiveFitOptions fit;           // used for every input (same seed: results do not depend
+                                     // on the order or the number of jobs)
+  std::string out_dir;               // must exist
+  int jobs = 1;                      // threads of the pool, >= 1
+  bool resume = false;               // skip inputs whose outputs are complete
+};
+
+// Called (serialised, from any pool thread) when an input is done.
+using BatchProgressCallback = std::function<void(const BatchOutcome&)>;
+
+// Fits every input; never throws for a bad input (it becomes a failed or error row).
+std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+                                   const BatchProgressCallback& on_done);
+
+// One input: the resume check (when options.resume), the fit and its outputs.
+BatchOutcome ProcessBatchInput(const BatchInput& input, const BatchOptions& options);
+
+// Removes the temporaries a killed run left for these inputs in out_dir.
+void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir);
+
+// The summary.csv text (RFC 4180 quoting), header included.
+std::string SummaryCsv(const std::vector<BatchOutcome>& outcomes);
+
+}  // namespace implicitfit

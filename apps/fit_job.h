@@ -1,0 +1,32 @@
+// The fit of one cloud file, shared by the `fit` and `batch` commands: read the cloud
+// (datasets/cloud_file.h), fit one primitive (fit/primitive_fitter.h) and build the JSON report
+// that `fit --report` writes:
+//   {"success", "message", "points", "inliers", "rms_distance", "max_distance", "sigma",
+//    "mean_normal_angle_deg", "iterations", "rounds", "seconds", "normals",
+//    "parameters": {field: value}, "standard_deviations": {field: value}}
+// Writing the files is left to the commands.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "fit/primitive_fitter.h"
+
+namespace implicitfit {
+
+struct CloudFit {
+  size_t points = 0;            // points read from the file
+  PrimitiveFitResult result;    // result.success false: a negative result (no model)
+  nlohmann::json report;        // the report of the fit, success or not
+};
+
+// Throws InputError (naming the file) when the cloud cannot be read.
+CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options);
+
+// The fit options of the command-line arguments --model KIND, --seed, --threshold (<= 0: the
+// default) and --fix FIELD=V[,V...] (e.g. "radius=2", "axis=0,0,1"); InputError when invalid.
+PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed, double threshold,
+                                            const std::vector<std::string>& fixes);
+
+}  // namespace implicitfit
