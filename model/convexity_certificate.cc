@@ -1,7 +1,9 @@
 #include "model/convexity_certificate.h"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "model/bernstein_patch.h"
 #include "model/symmetric_eigen3.h"
@@ -32,6 +34,19 @@ ConvexityCertificate CertifyConvexity(int k, const double* control_points) {
   ConvexityCertificate result;
   if (k < 2) {
     result.convex = k == 1;
+    return result;
+  }
+  // Control points near the ends of the double range (A^mu sums four of them and could
+  // overflow): certify 2^-e b, exactly scaled, and scale the margin back.
+  const long long n = NumBernsteinControlPoints(k);
+  double largest = 0.0;
+  for (long long i = 0; i < n; ++i) largest = std::max(largest, std::abs(control_points[i]));
+  if (largest > 1e150 || (largest > 0.0 && largest < 1e-150)) {
+    const int e = std::ilogb(largest);
+    std::vector<double> scaled(control_points, control_points + n);
+    for (double& b : scaled) b = std::ldexp(b, -e);
+    result = CertifyConvexity(k, scaled.data());
+    result.min_eigenvalue = std::ldexp(result.min_eigenvalue, e);
     return result;
   }
   result.convex = true;

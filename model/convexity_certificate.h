@@ -16,7 +16,9 @@
 // kConvexityTolerance * |A^mu|_F. min_eigenvalue is the smallest eigenvalue over all A^mu, in
 // control-point units (no k(k-1) factor).
 // Degree 1 (a plane, Hessian zero): convex (it bounds a half-space), min_eigenvalue 0, no
-// matrices. No heap allocation: fit for millions of patches per second.
+// matrices. No heap allocation (except for control points beyond 1e150 or below 1e-150 in
+// magnitude, certified after an exact power-of-two scaling so A^mu cannot overflow): fit for
+// millions of patches per second.
 #pragma once
 
 namespace implicitfit {

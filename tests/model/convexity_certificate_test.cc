@@ -93,6 +93,22 @@ TEST(ConvexityCertificate, CubicNeedsAllFourVertexMatrices) {
   }
 }
 
+TEST(ConvexityCertificate, ExtremeMagnitudesNeitherOverflowNorUnderflow) {
+  std::mt19937 rng(24);
+  for (int trial = 0; trial < 50; ++trial) {
+    const std::vector<double> b = testsupport::RandomMixedPatch(rng, 3);
+    const ConvexityCertificate base = CertifyConvexity(3, b.data());
+    for (double scale : {0x1p1000, 0x1p-1000}) {  // exact powers of two, normal results
+      std::vector<double> s = b;
+      for (double& x : s) x *= scale;
+      const ConvexityCertificate c = CertifyConvexity(3, s.data());
+      EXPECT_EQ(c.convex, base.convex) << scale;
+      EXPECT_NEAR(c.min_eigenvalue / scale, base.min_eigenvalue, 1e-12 * std::abs(base.min_eigenvalue) + 1e-14)
+          << scale;
+    }
+  }
+}
+
 TEST(ConvexityCertificate, DegreeOneIsConvexWithZeroMargin) {
   const double plane[4] = {1, -2, 0.5, 3};
   const ConvexityCertificate cert = CertifyConvexity(1, plane);
