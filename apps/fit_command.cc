@@ -9,6 +9,7 @@
 
 #include "apps/command.h"
 #include "apps/fit_job.h"
+#include "apps/fit_model_kinds.h"
 #include "datasets/atomic_file.h"
 #include "datasets/io_error.h"
 #include "datasets/model_file.h"
@@ -24,6 +25,8 @@ struct FitArgs {
   double threshold = 0.0;
   std::vector<std::string> fixes;
   bool convex = false;
+  int degree = 0;
+  std::vector<double> tetrahedron;
 };
 
 }  // namespace
@@ -32,8 +35,8 @@ CommandAction AddFitCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to an oriented point cloud");
   auto a = std::make_shared<FitArgs>();
   cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt, x y z nx ny nz)")->required();
-  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus");
-  auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (not yet available)");
+  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch");
+  auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (primitive parameters, delta and epsilon, control points)");
   model_opt->excludes(init_opt);
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
   cmd->add_option("--report", a->report, "Write a JSON report of the fit");
@@ -41,12 +44,20 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--threshold", a->threshold, "Initial inlier band (default: 1% of the bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--fix", a->fixes, "Keep a parameter constant, e.g. --fix radius=2 --fix axis=0,0,1");
-  cmd->add_flag("--convex", a->convex, "Constrain Bernstein patches to be convex (not yet available)");
+  cmd->add_flag("--convex", a->convex, "Constrain the Bernstein patch to be convex (certified)")
+      ->group("Bernstein patches");
+  cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch)")
+      ->check(CLI::Range(2, 4))
+      ->group("Bernstein patches");
+  cmd->add_option("--tetrahedron", a->tetrahedron, "Patch tetrahedron x1,y1,z1,...,x4,y4,z4 (default: encloses the cloud)")
+      ->delimiter(',')
+      ->expected(12)
+      ->group("Bernstein patches");
   return [a]() {
-    if (!a->init.empty() || a->convex) {
-      std::cerr << "implicitfit fit: --init and --convex are not yet available in this version\n";
-      return 2;
-    }
+    ModelFitRequest request{a->cloud, a->out, a->report, a->init, a->kind, a->degree, a->convex, a->tetrahedron};
+    if (!a->init.empty()) return RunTreeFit(request);
+    if (IsPatchKind(a->kind)) return RunPatchFit(request);
+    if (a->convex) throw InputError("--convex applies to quadric-patch and cubic-patch");
     if (a->kind.empty()) throw InputError("--model KIND or --init MODEL.json is required");
     const PrimitiveFitOptions options = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
     const CloudFit fit = FitCloudFile(a->cloud, options);

@@ -1,6 +1,7 @@
 // The `implicitfit` command line (DESIGN.md contract). Thin: it wires CLI11 to the commands and
 // maps errors to exit codes (2 for invalid usage or input, with the message on stderr).
 #include <CLI/CLI.hpp>
+#include <glog/logging.h>
 #include <exception>
 #include <iostream>
 #include <map>
@@ -15,6 +16,9 @@
 
 int main(int argc, char** argv) {
   using namespace implicitfit;
+  // Ceres logs through glog; its warnings (e.g. the rejected infeasible steps of the convex
+  // patch fit) are not for users of the command line.
+  FLAGS_minloglevel = google::GLOG_ERROR;
   CLI::App app{"implicitfit: fit implicit surface models to oriented point clouds"};
   app.set_version_flag("--version", "implicitfit " IMPLICITFIT_VERSION);
   app.require_subcommand(1);

@@ -1,0 +1,27 @@
+// The two fits of `implicitfit fit` beyond single primitives:
+//   --init MODEL.json      every free parameter of a model tree (fit/tree_fitter.h)
+//   --model quadric-patch | cubic-patch [--degree k] [--convex] [--tetrahedron 12 numbers]
+//                          a Bernstein patch (fit/patch_fitter.h)
+// Each reads the cloud, fits, writes the report (when asked) and, on success, the model file;
+// returns the exit code (0 success, 1 the fit failed or the constraint cannot be met).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace implicitfit {
+
+struct ModelFitRequest {
+  std::string cloud, out, report;
+  std::string init;                   // --init
+  std::string kind;                   // quadric-patch / cubic-patch
+  int degree = 0;                     // 0: from the kind
+  bool convex = false;
+  std::vector<double> tetrahedron;    // empty or 12 numbers
+};
+
+bool IsPatchKind(const std::string& kind);
+int RunTreeFit(const ModelFitRequest& request);
+int RunPatchFit(const ModelFitRequest& request);
+
+}  // namespace implicitfit
