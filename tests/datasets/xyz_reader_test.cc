@@ -37,7 +37,8 @@ TEST(XyzReader, RefusesHostileTextWithTheLineNumber) {
   ExpectRefused("1 2 x\n", "c.xyz:1: 'x' is not a number");
   ExpectRefused("1 2 3\n4 nan 6\n", "c.xyz:2: NaN or infinite coordinate");
   ExpectRefused("1 2 inf\n", "c.xyz:1: NaN or infinite coordinate");
-  ExpectRefused(std::string("1 2 3\n\x01\x02\xff garbage\n", 20), "c.xyz:2:");
+  const char binary[] = "1 2 3\n\x01\x02\xff garbage\n\0 after a NUL\n";
+  ExpectRefused(std::string(binary, sizeof binary - 1), "c.xyz:2:");
 }
 
 TEST(XyzReader, ListsUnusableNormalsInsteadOfRefusingThem) {
