@@ -4,6 +4,7 @@
 // Writes DIR/<name>.model.json and DIR/<name>.report.json per input, then DIR/summary.csv
 // (DIR/summary-<i>-of-<N>.csv with --shard, so shards can share DIR), and prints a human summary
 // naming the failures. Exit 0 all inputs ok, 1 some failed, 2 invalid usage (nothing fitted).
+// Built with MPI, `mpirun -np P implicitfit batch ...` distributes the inputs (apps/batch_mpi.h).
 #include <unistd.h>
 
 #include <chrono>
@@ -13,6 +14,9 @@
 #include <thread>
 
 #include "apps/batch_inputs.h"
+#ifdef IMPLICITFIT_WITH_MPI
+#include "apps/batch_mpi.h"
+#endif
 #include "apps/batch_progress.h"
 #include "apps/batch_runner.h"
 #include "apps/command.h"
@@ -32,6 +36,30 @@ struct BatchArgs {
   double threshold = 0.0;
 };
 
+// Writes the summary, prints the human summary; the exit code.
+int Finish(const std::vector<BatchOutcome>& outcomes, const std::string& summary_path, double seconds) {
+  WriteFileAtomically(summary_path, SummaryCsv(outcomes));
+  size_t ok = 0, skipped = 0, failed = 0, points = 0;
+  for (const BatchOutcome& o : outcomes) {
+    ok += o.status == BatchStatus::kOk;
+    skipped += o.status == BatchStatus::kSkipped;
+    failed += !o.Succeeded();
+    if (o.status != BatchStatus::kSkipped) points += o.points;
+  }
+  const size_t processed = outcomes.size() - skipped;
+  std::printf("batch: %zu inputs: %zu fitted, %zu skipped, %zu failed in %.2f s (%.2f inputs/s, %.0f points/s)\n",
+              outcomes.size(), ok, skipped, failed, seconds, seconds > 0 ? processed / seconds : 0.0,
+              seconds > 0 ? points / seconds : 0.0);
+  for (const BatchOutcome& o : outcomes)
+    if (!o.Succeeded()) std::printf("  %s %s\n", BatchStatusName(o.status), o.Failure().c_str());
+  std::printf("summary: %s\n", summary_path.c_str());
+  return failed > 0 ? 1 : 0;
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 CommandAction AddBatchCommand(CLI::App& app) {
@@ -41,7 +69,7 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it)");
   cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus")->required();
   cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
-  cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores)")->check(CLI::PositiveNumber);
+  cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores; under MPI one per rank)")->check(CLI::PositiveNumber);
   cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
   cmd->add_option("--shard", a->shard, "Only inputs with 0-based index k, k mod N = i - 1 (i is 1-based)");
   cmd->add_option("--seed", a->seed, "Random seed, the same for every input (as `fit --seed`)");
@@ -72,29 +100,23 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.fit = fit;
     options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
 
+    const std::string summary_path = (std::filesystem::path(a->out_dir) / summary_name).string();
     const auto start = std::chrono::steady_clock::now();
     BatchProgress progress(inputs.size(), ::isatty(STDERR_FILENO) == 1);
-    const std::vector<BatchOutcome> outcomes =
-        RunBatch(inputs, options, [&](const BatchOutcome& o) { progress.Done(o); });
-    progress.Finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    WriteFileAtomically((std::filesystem::path(a->out_dir) / summary_name).string(), SummaryCsv(outcomes));
-
-    size_t ok = 0, skipped = 0, failed = 0, points = 0;
-    for (const BatchOutcome& o : outcomes) {
-      ok += o.status == BatchStatus::kOk;
-      skipped += o.status == BatchStatus::kSkipped;
-      failed += !o.Succeeded();
-      if (o.status != BatchStatus::kSkipped) points += o.points;
+    const auto on_done = [&](const BatchOutcome& o) { progress.Done(o); };
+#ifdef IMPLICITFIT_WITH_MPI
+    if (LaunchedUnderMpi()) {
+      MpiSession mpi;
+      options.fit.num_threads = 1;  // the ranks are the parallelism
+      const std::vector<BatchOutcome> outcomes = RunBatchOverMpi(inputs, options, on_done);
+      if (mpi.rank() != 0) return 0;  // rank 0 reports (mpirun exits with its code)
+      progress.Finish();
+      return Finish(outcomes, summary_path, SecondsSince(start));
     }
-    const size_t processed = outcomes.size() - skipped;
-    std::printf("batch: %zu inputs: %zu fitted, %zu skipped, %zu failed in %.2f s (%.2f inputs/s, %.0f points/s)\n",
-                outcomes.size(), ok, skipped, failed, seconds, seconds > 0 ? processed / seconds : 0.0,
-                seconds > 0 ? points / seconds : 0.0);
-    for (const BatchOutcome& o : outcomes)
-      if (!o.Succeeded()) std::printf("  %s %s: %s\n", BatchStatusName(o.status), o.input.c_str(), o.error.c_str());
-    std::printf("summary: %s\n", (std::filesystem::path(a->out_dir) / summary_name).c_str());
-    return failed > 0 ? 1 : 0;
+#endif
+    const std::vector<BatchOutcome> outcomes = RunBatch(inputs, options, on_done);
+    progress.Finish();
+    return Finish(outcomes, summary_path, SecondsSince(start));
   };
 }
 

@@ -12,7 +12,7 @@ void BatchProgress::Done(const BatchOutcome& o) {
   if (!terminal_ || failed) {
     if (terminal_) std::fputs("\r\033[K", out_);
     std::fprintf(out_, "[%zu/%zu] %s %s%s%s\n", done_, total_, o.name.c_str(), BatchStatusName(o.status),
-                 failed ? ": " : "", failed ? (o.input + ": " + o.error).c_str() : "");
+                 failed ? ": " : "", failed ? o.Failure().c_str() : "");
   }
   if (terminal_) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

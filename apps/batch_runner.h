@@ -38,6 +38,8 @@ struct BatchOutcome {
   std::string error;                 // why it failed (empty when ok or skipped)
   bool HasFigures() const { return status != BatchStatus::kError; }
   bool Succeeded() const { return status == BatchStatus::kOk || status == BatchStatus::kSkipped; }
+  // "<input>: <error>" (the input named once, also when the error already starts with it).
+  std::string Failure() const { return error.rfind(input + ":", 0) == 0 ? error : input + ": " + error; }
 };
 
 struct BatchOptions {

@@ -359,3 +359,52 @@ TEST_F(BatchCommand, InvalidUsageExits2AndWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BatchCommand, ProgressOnATerminalIsOneUpdatingLine) {
+  if (RunCommand("command -v script").exit_code != 0) GTEST_SKIP() << "no `script` to give a terminal";
+  const std::string out = testsupport::ScratchDir("batch_tty");
+  // script(1) runs the batch with a pseudo-terminal as stdout and stderr.
+  const auto r = RunCommand("script -qec '" + kCli + " batch" + Join(*truths_, 4) + " --model sphere --out-dir " +
+                            out + " --jobs 2' /dev/null");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("\r\033[K[4/4]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("inputs/s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ETA"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("cloud_000 ok"), std::string::npos) << "no per-input lines on a terminal: " << r.out;
+}
+
+#ifdef IMPLICITFIT_MPIEXEC
+TEST_F(BatchCommand, MpiRanksGiveTheSameModelsAsOneProcess) {
+  const std::string mpi = testsupport::ScratchDir("batch_mpi"), single = testsupport::ScratchDir("batch_mpi_single");
+  const std::string bad = mpi + "_garbage.xyz";
+  WriteText(bad, "not a cloud\n");
+  const std::string inputs = Join(*truths_, 10) + " " + bad;
+  // Open MPI refuses root unless told; --oversubscribe: more ranks than cores.
+  const std::string mpirun = std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ") +
+                             IMPLICITFIT_MPIEXEC + " --oversubscribe -np 3 ";
+  const auto r = RunCommand(mpirun + kCli + " batch" + inputs + " --model sphere --out-dir " + mpi);
+  EXPECT_EQ(r.exit_code, 1) << "one bad input: " << r.out << r.err;
+  EXPECT_NE(r.out.find("11 inputs: 10 fitted, 0 skipped, 1 failed"), std::string::npos) << r.out << r.err;
+  EXPECT_NE(r.out.find("_garbage.xyz"), std::string::npos) << r.out;
+  const size_t first = r.out.find("batch: 11 inputs");
+  EXPECT_EQ(r.out.find("batch: 11 inputs", first + 1), std::string::npos) << "one batch over the ranks, not three: " << r.out;
+  ASSERT_EQ(RunCommand(kCli + " batch" + inputs + " --model sphere --out-dir " + single + " --jobs 2").exit_code, 1);
+  const auto mpi_rows = SummaryRows(mpi + "/summary.csv"), single_rows = SummaryRows(single + "/summary.csv");
+  ASSERT_EQ(mpi_rows.size(), 11u);
+  for (const auto& [input, row] : single_rows) {
+    ASSERT_EQ(mpi_rows.count(input), 1u) << input;
+    for (int column : {1, 2, 3, 4, 6}) EXPECT_EQ(mpi_rows.at(input)[column], row[column]) << input;
+  }
+  for (size_t i = 0; i < 10; ++i) {
+    const std::string name = (*truths_)[i].name + ".model.json";
+    EXPECT_FALSE(Slurp(mpi + "/" + name).empty());
+    EXPECT_EQ(Slurp(mpi + "/" + name), Slurp(single + "/" + name)) << name;
+  }
+  const auto again = RunCommand(mpirun + kCli + " batch" + inputs + " --model sphere --out-dir " + mpi + " --resume");
+  EXPECT_NE(again.out.find("11 inputs: 0 fitted, 10 skipped, 1 failed"), std::string::npos) << again.out << again.err;
+}
+#endif
+
+}  // namespace
