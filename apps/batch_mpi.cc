@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace implicitfit {
 namespace {
@@ -53,30 +54,40 @@ int ReceiveResult(const std::vector<BatchInput>& inputs, std::vector<BatchOutcom
   return status.MPI_SOURCE;
 }
 
-// Sends the next input to a worker, or tells it to stop; returns false when it was stopped.
-bool HandOut(int worker, size_t* next, size_t count) {
-  if (*next < count) {
-    const unsigned long long index = (*next)++;
-    MPI_Send(&index, 1, MPI_UNSIGNED_LONG_LONG, worker, kWork, MPI_COMM_WORLD);
-    return true;
-  }
-  MPI_Send(nullptr, 0, MPI_CHAR, worker, kStop, MPI_COMM_WORLD);
-  return false;
+void SendWork(int worker, size_t index) {
+  const unsigned long long i = index;
+  MPI_Send(&i, 1, MPI_UNSIGNED_LONG_LONG, worker, kWork, MPI_COMM_WORLD);
 }
+void SendStop(int worker) { MPI_Send(nullptr, 0, MPI_CHAR, worker, kStop, MPI_COMM_WORLD); }
 
 std::vector<BatchOutcome> Coordinate(const std::vector<BatchInput>& inputs, const BatchOptions& options,
                                      const BatchProgressCallback& on_done, int size) {
   RemoveStaleTemporaries(inputs, options.out_dir);  // before any worker starts writing
   std::vector<BatchOutcome> outcomes(inputs.size());
+  // Every worker holds up to kQueued inputs, so it never waits for rank 0 between two fits
+  // (rank 0 answers only between its own fits); a worker with none left is stopped.
+  constexpr int kQueued = 2;
   size_t next = 0;
+  std::vector<int> queued(size, 0);
   int busy = 0;
-  for (int worker = 1; worker < size; ++worker) busy += HandOut(worker, &next, inputs.size());
+  for (int worker = 1; worker < size; ++worker) {
+    for (int k = 0; k < kQueued && next < inputs.size(); ++k, ++queued[worker]) SendWork(worker, next++);
+    if (queued[worker] == 0) SendStop(worker);
+    busy += queued[worker] > 0;
+  }
   while (busy > 0 || next < inputs.size()) {
     int waiting = 0;
     MPI_Iprobe(MPI_ANY_SOURCE, kResult, MPI_COMM_WORLD, &waiting, MPI_STATUS_IGNORE);
     if (waiting || next >= inputs.size()) {
       const int worker = ReceiveResult(inputs, &outcomes, on_done);
-      if (!HandOut(worker, &next, inputs.size())) --busy;
+      --queued[worker];
+      if (next < inputs.size()) {
+        SendWork(worker, next++);
+        ++queued[worker];
+      } else if (queued[worker] == 0) {
+        SendStop(worker);
+        --busy;
+      }
     } else {
       const size_t index = next++;  // nobody waits for work: rank 0 fits one itself
       outcomes[index] = ProcessBatchInput(inputs[index], options);

@@ -1,7 +1,7 @@
 // `implicitfit batch` over MPI ranks (built when CMake finds MPI: IMPLICITFIT_WITH_MPI).
 // Started as `mpirun -np P implicitfit batch ...`, every rank expands the same input list; then
-//   rank 0 removes stale temporaries, hands out input indices one at a time (a rank that
-//   finishes gets the next: dynamic load balancing), fits inputs itself whenever no result is
+//   rank 0 removes stale temporaries, hands out input indices, two queued per worker (a rank
+//   that finishes one gets the next: dynamic load balancing), fits inputs itself whenever no result is
 //   waiting, collects every outcome and writes the summary;
 //   ranks 1..P-1 fit the inputs they are sent (apps/batch_runner.h ProcessBatchInput, one at a
 //   time, single-threaded Ceres) and send back their outcome, until told to stop.
