@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "datasets/cloud_file.h"
+#include "datasets/oriented_cloud.h"
 #include "datasets/io_error.h"
 #include "model/model.h"
 
@@ -58,11 +58,12 @@ std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& te
 }  // namespace
 
 CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options) {
-  const PointCloud cloud = ReadCloudFile(path);
+  std::string normals;
+  const PointCloud cloud = ReadOrientedCloud(path, &normals);
   CloudFit fit;
   fit.points = cloud.size();
   fit.result = FitPrimitive(cloud.points, cloud.normals, options);
-  fit.report = Report(fit.result, options.kind, cloud.size(), cloud.has_normals() ? "read from file" : "none");
+  fit.report = Report(fit.result, options.kind, cloud.size(), normals);
   return fit;
 }
 

@@ -5,29 +5,15 @@
 #include <nlohmann/json.hpp>
 
 #include "datasets/atomic_file.h"
-#include "datasets/cloud_file.h"
 #include "datasets/io_error.h"
 #include "datasets/model_file.h"
-#include "datasets/normal_estimation.h"
+#include "datasets/oriented_cloud.h"
 #include "fit/patch_fitter.h"
 #include "fit/tree_fitter.h"
 #include "model/model_json.h"
 
 namespace implicitfit {
 namespace {
-
-PointCloud ReadWithNormals(const std::string& path, std::string* normals_action) {
-  CloudFileInfo info;
-  PointCloud cloud = ReadCloudFile(path, &info);
-  NormalOptions options;
-  options.viewpoint = info.viewpoint;
-  try {
-    *normals_action = EnsureOrientedNormals(&cloud, options).action;
-  } catch (const std::invalid_argument& e) {
-    throw FileError(path, e.what());
-  }
-  return cloud;
-}
 
 void Finish(const ModelFitRequest& request, const Model& model, const nlohmann::json& report) {
   if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
@@ -42,7 +28,7 @@ bool IsPatchKind(const std::string& kind) { return kind == "quadric-patch" || ki
 int RunTreeFit(const ModelFitRequest& request) {
   const Model init = ReadModelFile(request.init);
   std::string normals;
-  const PointCloud cloud = ReadWithNormals(request.cloud, &normals);
+  const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, TreeFitOptions{});
   nlohmann::json report = {{"success", r.success},   {"message", r.message},   {"points", cloud.size()},
                            {"inliers", r.inliers},   {"rms_distance", r.rms},  {"sigma", r.sigma},
@@ -77,7 +63,7 @@ int RunPatchFit(const ModelFitRequest& request) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   std::string normals;
-  const PointCloud cloud = ReadWithNormals(request.cloud, &normals);
+  const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const PatchFitResult r = FitBernsteinPatch(cloud.points, cloud.normals, options);
   nlohmann::json report = {{"success", r.success},
                            {"message", r.message},

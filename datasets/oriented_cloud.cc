@@ -1,0 +1,25 @@
+#include "datasets/oriented_cloud.h"
+
+#include <stdexcept>
+
+#include "datasets/cloud_file.h"
+#include "datasets/io_error.h"
+#include "datasets/normal_estimation.h"
+
+namespace implicitfit {
+
+PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action) {
+  CloudFileInfo info;
+  PointCloud cloud = ReadCloudFile(path, &info);
+  NormalOptions options;
+  options.viewpoint = info.viewpoint;
+  try {
+    const NormalResult result = EnsureOrientedNormals(&cloud, options);
+    if (normals_action) *normals_action = result.action;
+  } catch (const std::invalid_argument& e) {
+    throw FileError(path, e.what());
+  }
+  return cloud;
+}
+
+}  // namespace implicitfit

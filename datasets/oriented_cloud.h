@@ -1,0 +1,16 @@
+// Reads a cloud file and makes sure it has consistently oriented normals: the file's normals
+// are kept (re-oriented when their signs are inconsistent), missing ones are estimated and
+// oriented toward the file's viewpoint when it gives one, else by MST propagation
+// (datasets/normal_estimation.h). `normals_action` says which happened, for reports.
+// Throws InputError naming the file (unreadable, or too few points to estimate normals).
+#pragma once
+
+#include <string>
+
+#include "datasets/point_cloud.h"
+
+namespace implicitfit {
+
+PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action);
+
+}  // namespace implicitfit
