@@ -66,16 +66,18 @@ CommandAction AddBatchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("batch", "Fit one model per cloud over many clouds, in parallel, resumably");
   auto a = std::make_shared<BatchArgs>();
   cmd->add_option("INPUTS", a->inputs, "Cloud files and directories (every supported cloud directly inside)");
-  cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it)");
+  cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it); repeatable")
+      ->allow_extra_args(false);  // one file per --manifest: later words stay INPUTS
   cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus")->required();
   cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
   cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores; under MPI one per rank)")->check(CLI::PositiveNumber);
   cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
-  cmd->add_option("--shard", a->shard, "Only inputs with 0-based index k, k mod N = i - 1 (i is 1-based)");
+  cmd->add_option("--shard", a->shard, "i/N: only the inputs whose 0-based index k has k mod N = i - 1 (1 <= i <= N)");
   cmd->add_option("--seed", a->seed, "Random seed, the same for every input (as `fit --seed`)");
   cmd->add_option("--threshold", a->threshold, "Initial inlier band (default: 1% of each cloud's bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--fix", a->fixes, "Keep a parameter constant in every fit, e.g. --fix radius=2");
+  cmd->add_option("--fix", a->fixes, "Keep a parameter constant in every fit, e.g. --fix radius=2; repeatable")
+      ->allow_extra_args(false);
   return [a]() {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
     const PrimitiveFitOptions fit = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);

@@ -334,6 +334,24 @@ TEST_F(BatchCommand, ShardsAreDisjointAndCoverEveryInput) {
                   .exit_code, 2) << bad;
 }
 
+TEST_F(BatchCommand, ListsDirectoriesSortedThenManifestsInOrder) {
+  const std::string out = testsupport::ScratchDir("batch_order"), dir = testsupport::ScratchDir("batch_order_dir");
+  const auto& t = *truths_;
+  for (int i : {2, 0, 1}) fs::copy_file(t[i].path, dir + "/" + t[i].name + ".xyz");
+  WriteText(dir + "/notes.md", "not a cloud: ignored in a directory\n");
+  WriteText(out + "/m.list", "# comment\n\n" + t[4].path + "\n  " + fs::relative(t[3].path, out).string() + "  \n");
+  // A word after --manifest FILE is an input again, not a second manifest.
+  const auto r = RunCommand(kCli + " batch --manifest " + out + "/m.list " + t[5].path + " " + dir +
+                            " --model sphere --out-dir " + out + "/res");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = ReadCsv(out + "/res/summary.csv");
+  std::vector<std::string> inputs;
+  for (size_t i = 1; i < rows.size(); ++i) inputs.push_back(rows[i][0]);
+  EXPECT_EQ(inputs, (std::vector<std::string>{t[5].path, dir + "/" + t[0].name + ".xyz", dir + "/" + t[1].name + ".xyz",
+                                              dir + "/" + t[2].name + ".xyz", t[4].path,
+                                              out + "/" + fs::relative(t[3].path, out).string()}));
+}
+
 TEST_F(BatchCommand, InvalidUsageExits2AndWritesNothing) {
   const std::string out = testsupport::ScratchDir("batch_usage") + "/out";
   const std::string in = Join(*truths_, 2);
