@@ -72,6 +72,42 @@ TEST(TreeFitter, RecoversTwoPlanesAndTheBlendOfARoundedCrease) {
               epsilon, r.rms, r.sigma);
 }
 
+// A rounded box: the intersection of six planes (a cube of half-size 1) with one blend for
+// all its edges, folded left to right.
+Model RoundedBox(const std::vector<Vec>& normals, const std::vector<double>& offsets, double delta, double epsilon) {
+  Model m;
+  std::vector<int> faces;
+  for (size_t i = 0; i < normals.size(); ++i)
+    faces.push_back(m.AddPrimitive(NodeType::kPlane, {normals[i].x(), normals[i].y(), normals[i].z(), offsets[i]}));
+  m.AddOperator(NodeType::kIntersection, faces, delta, epsilon, 2);
+  return m;
+}
+
+TEST(TreeFitter, RecoversARoundedBoxFromASampledScan) {
+  const std::vector<Vec> n = {Vec(1, 0, 0), Vec(-1, 0, 0), Vec(0, 1, 0), Vec(0, -1, 0), Vec(0, 0, 1), Vec(0, 0, -1)};
+  const Model truth = RoundedBox(n, std::vector<double>(6, 1.0), 0.15, 0.1);
+  SampleOptions so;
+  so.count = 6000;
+  so.noise = 0.003;
+  so.seed = 11;
+  const SampledCloud s = SampleModel(truth, so);
+  std::vector<Vec> tilted;
+  for (size_t i = 0; i < n.size(); ++i) tilted.push_back((n[i] + Vec(0.03, -0.02, 0.025)).normalized());
+  const Model init = RoundedBox(tilted, {1.05, 0.96, 1.04, 0.97, 1.03, 0.95}, 0.25, 0.1);
+  const TreeFitResult r = FitModelTree(init, s.cloud.points, s.cloud.normals, TreeFitOptions{});
+  ASSERT_TRUE(r.success) << r.message;
+  const std::vector<double>& p = r.model.parameters();
+  for (int f = 0; f < 6; ++f) {
+    const Vec normal(p[4 * f], p[4 * f + 1], p[4 * f + 2]);
+    EXPECT_LT(std::acos(std::min(1.0, normal.normalized().dot(n[f]))), 2e-3) << "face " << f;
+    EXPECT_NEAR(p[4 * f + 3] / normal.norm(), 1.0, 1e-3) << "face " << f;
+  }
+  EXPECT_NEAR(p[24], 0.15, 0.015);
+  EXPECT_NEAR(p[25], 0.1, 0.02);
+  EXPECT_LT(r.rms, 1.5 * so.noise);
+  std::printf("  rounded box: delta %.4f (0.15) epsilon %.4f (0.1) rms %.5f\n", p[24], p[25], r.rms);
+}
+
 TEST(TreeFitter, FixedFieldsKeepTheirValues) {
   const Model truth = Wedge(Vec(0, 0, 1), 0.0, Vec(1, 0, 0), 0.0, 0.2, 0.1);
   SampleOptions so;
