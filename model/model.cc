@@ -130,7 +130,9 @@ double Model::Value(const Eigen::Vector3d& x) const {
 }
 
 Eigen::Vector3d Model::Gradient(const Eigen::Vector3d& x, double* value) const {
-  std::vector<Dual3> p(parameters_.begin(), parameters_.end());
+  // Reused per thread: Gradient is called per point by samplers and reports.
+  thread_local std::vector<Dual3> p;
+  p.assign(parameters_.begin(), parameters_.end());
   const Dual3 xd[3] = {Dual3(x[0], Eigen::Vector3d::UnitX()), Dual3(x[1], Eigen::Vector3d::UnitY()),
                        Dual3(x[2], Eigen::Vector3d::UnitZ())};
   const Dual3 f = Evaluate(p.data(), xd);
