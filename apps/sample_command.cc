@@ -1,5 +1,5 @@
 // implicitfit sample MODEL.json --count N [--noise s] [--outliers f] [--seed s]
-//                    [--view x,y,z --view-angle deg] --out CLOUD.xyz
+//                    [--view x,y,z --view-angle deg] --out CLOUD.xyz|CLOUD.ply
 // Oriented points on the model's zero set with known truth (datasets/model_sampler.h).
 #include <iostream>
 
@@ -7,6 +7,7 @@
 #include "datasets/io_error.h"
 #include "datasets/model_file.h"
 #include "datasets/model_sampler.h"
+#include "datasets/ply_writer.h"
 #include "datasets/xyz_writer.h"
 
 namespace implicitfit {
@@ -27,8 +28,12 @@ CommandAction AddSampleCommand(CLI::App& app) {
       ->delimiter(',')->expected(3);
   cmd->add_option("--view-angle", options->view_angle_deg, "Partial view: keep normals within this angle of --view")
       ->check(CLI::Range(0.0, 180.0));
-  cmd->add_option("--out", *out, "Output cloud (.xyz: x y z nx ny nz)")->required();
+  cmd->add_option("--out", *out, "Output cloud (.xyz/.pwn/.txt: x y z nx ny nz; .ply: binary with normals)")->required();
   return [model_path, out, options, view]() {
+    const std::string ext = out->size() > 4 ? out->substr(out->find_last_of('.') + 1) : "";
+    const bool ply = ext == "ply";
+    if (!ply && ext != "xyz" && ext != "pwn" && ext != "txt")
+      throw InputError(*out + ": unsupported output format (use .xyz, .pwn, .txt or .ply)");
     if (view->size() == 3) options->view_dir = Eigen::Vector3d((*view)[0], (*view)[1], (*view)[2]);
     const Model model = ReadModelFile(*model_path);
     SampledCloud sampled;
@@ -38,7 +43,10 @@ CommandAction AddSampleCommand(CLI::App& app) {
       std::cerr << "implicitfit sample: " << *model_path << ": " << e.what() << "\n";
       return 1;
     }
-    WriteXyzFile(sampled.cloud, *out);
+    if (ply)
+      WritePlyFile(sampled.cloud, *out);
+    else
+      WriteXyzFile(sampled.cloud, *out);
     return 0;
   };
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "support/run_command.h"
 
@@ -92,6 +93,33 @@ TEST(FitCommand, InvalidOptionsExit2) {
   EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --fix colour=1 --out " + dir + "/m.json").exit_code, 2);
   EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model quadric-patch --degree 7 --out " + dir + "/m.json").exit_code, 2);
   EXPECT_FALSE(testsupport::FileExists(dir + "/m.json"));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(SampleCommand, WritesPlyAndXyzThatReadBackTheSame) {
+  const std::string dir = testsupport::ScratchDir("sample_formats");
+  WriteText(dir + "/m.json", R"({"format": "implicitfit-model", "version": 1,
+    "root": {"type": "torus", "center": [0, 0, 0], "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 0.3}})");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/m.json --count 500 --seed 9 --out " + dir + "/a.xyz").exit_code, 0);
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/m.json --count 500 --seed 9 --out " + dir + "/a.ply").exit_code, 0);
+  // Both files hold points on the torus: eval prints |f| < 1e-9 for every one of them.
+  for (const char* name : {"/a.xyz", "/a.ply"}) {
+    const auto r = RunCommand(kCli + " eval " + dir + "/m.json " + dir + name);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream values(r.out);
+    double v;
+    int count = 0;
+    while (values >> v) {
+      EXPECT_LT(std::abs(v), 1e-9);
+      ++count;
+    }
+    EXPECT_EQ(count, 500) << name;
+  }
+  EXPECT_EQ(RunCommand(kCli + " sample " + dir + "/m.json --count 5 --out " + dir + "/a.obj").exit_code, 2);
+  EXPECT_FALSE(testsupport::FileExists(dir + "/a.obj"));
 }
 
 }  // namespace
