@@ -7,6 +7,7 @@
 #include <map>
 
 #include "datasets/io_error.h"
+#include "fit/primitive_fitter.h"
 
 namespace implicitfit {
 namespace fs = std::filesystem;
@@ -18,26 +19,40 @@ std::string Trim(const std::string& s) {
   return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
 }
 
-void AddDirectory(const std::string& dir, std::vector<std::string>* paths) {
+struct Entry {
+  std::string path, kind;  // kind: from a manifest line, or empty
+};
+
+void AddDirectory(const std::string& dir, std::vector<Entry>* entries) {
   std::vector<std::string> found;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
     if (IsCloudFileName(it->path().string()) && !it->is_directory()) found.push_back(it->path().string());
   if (ec) throw FileError(dir, "cannot list the directory: " + ec.message());
   std::sort(found.begin(), found.end());
-  paths->insert(paths->end(), found.begin(), found.end());
+  for (const std::string& path : found) entries->push_back({path, ""});
 }
 
-void AddManifest(const std::string& manifest, std::vector<std::string>* paths) {
+void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
   std::ifstream in(manifest);
   if (!in || fs::is_directory(manifest)) throw FileError(manifest, "cannot read the manifest");
   const fs::path base = fs::path(manifest).parent_path();
   std::string line;
-  while (std::getline(in, line)) {
+  for (long number = 1; std::getline(in, line); ++number) {
     line = Trim(line);
     if (line.empty() || line[0] == '#') continue;
+    Entry e;
+    const size_t tab = line.find('\t');
+    if (tab != std::string::npos) {
+      e.kind = Trim(line.substr(tab + 1));
+      line = Trim(line.substr(0, tab));
+      NodeType type;
+      if (!FittableKindFromName(e.kind, &type))
+        throw LineError(manifest, number, "unknown kind '" + e.kind + "' (plane, sphere, cylinder, cone, torus)");
+    }
     const fs::path p(line);
-    paths->push_back(p.is_absolute() || base.empty() ? line : (base / p).string());
+    e.path = p.is_absolute() || base.empty() ? line : (base / p).string();
+    entries->push_back(e);
   }
   if (in.bad()) throw FileError(manifest, "cannot read the manifest");
 }
@@ -52,20 +67,21 @@ bool IsCloudFileName(const std::string& path) {
 
 std::vector<BatchInput> ExpandBatchInputs(const std::vector<std::string>& inputs,
                                           const std::vector<std::string>& manifests) {
-  std::vector<std::string> paths;
+  std::vector<Entry> entries;
   for (const std::string& input : inputs) {
     if (fs::is_directory(input))
-      AddDirectory(input, &paths);
+      AddDirectory(input, &entries);
     else
-      paths.push_back(input);
+      entries.push_back({input, ""});
   }
-  for (const std::string& manifest : manifests) AddManifest(manifest, &paths);
+  for (const std::string& manifest : manifests) AddManifest(manifest, &entries);
 
   std::vector<BatchInput> result;
   std::map<std::string, std::string> owner;  // name -> first path
-  for (const std::string& path : paths) {
+  for (const auto& [path, kind] : entries) {
     BatchInput in;
     in.path = path;
+    in.kind = kind;
     in.name = fs::path(path).stem().string();
     in.index = result.size();
     if (in.name.empty() || in.name == "." || in.name == "..")

@@ -2,9 +2,11 @@
 // name of each cloud, and the --shard selection.
 //   - a directory: every supported cloud directly inside it (.xyz .pwn .txt .ply .pcd, by
 //     extension, case-insensitive), sorted by name; not recursive;
-//   - --manifest FILE: one cloud path per line; blank lines and lines starting with '#' are
-//     ignored, surrounding whitespace is trimmed, relative paths are relative to the manifest's
-//     folder (a manifest is never guessed from a .txt name: .txt is a cloud format);
+//   - --manifest FILE: one cloud per line, "PATH" or "PATH<TAB>KIND" (KIND, e.g. cylinder,
+//     replaces --model for that cloud; a tab so that paths may hold spaces); blank lines and
+//     lines starting with '#' are ignored, surrounding whitespace is trimmed, relative paths are
+//     relative to the manifest's folder (a manifest is never guessed from a .txt name: .txt is
+//     a cloud format);
 //   - anything else: one cloud file (it may fail on its own later, e.g. missing or unreadable).
 // Inputs keep the command-line order (positional INPUTS first, then the manifests), each
 // directory expanded in place. The output name of a cloud is its file name without the last
@@ -22,9 +24,11 @@ struct BatchInput {
   std::string path;    // the cloud file
   std::string name;    // output base name: DIR/<name>.model.json, DIR/<name>.report.json
   size_t index = 0;    // position in the full (unsharded) list
+  std::string kind;    // from a manifest line; empty: --model
 };
 
-// Throws InputError for an unreadable directory or manifest, or for duplicate output names.
+// Throws InputError for an unreadable directory or manifest, an unknown KIND in a manifest
+// (naming the file and line), or duplicate output names.
 std::vector<BatchInput> ExpandBatchInputs(const std::vector<std::string>& inputs,
                                           const std::vector<std::string>& manifests);
 

@@ -27,10 +27,10 @@ std::string ReportPath(const BatchOptions& o, const BatchInput& in) {
 }
 
 // The figures of a complete earlier result, or false when it must be (re)fitted.
-bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, BatchOutcome* out) {
+bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, NodeType kind, BatchOutcome* out) {
   try {
     const Model model = ReadModelFile(ModelPath(o, in));
-    if (model.root() < 0 || model.nodes()[model.root()].type != o.fit.kind) return false;
+    if (model.root() < 0 || model.nodes()[model.root()].type != kind) return false;
     std::ifstream report_file(ReportPath(o, in));
     if (!report_file) return false;
     const nlohmann::json report = nlohmann::json::parse(report_file);
@@ -76,7 +76,17 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   BatchOutcome out;
   out.input = in.path;
   out.name = in.name;
-  if (o.resume && ReadCompleteOutputs(in, o, &out)) {
+  PrimitiveFitOptions fit_options = o.fit;
+  std::string invalid;
+  if (!in.kind.empty() && !FittableKindFromName(in.kind, &fit_options.kind))
+    invalid = "unknown kind " + in.kind;
+  else if (!fit_options.IsValid(&invalid))
+    invalid = std::string("options invalid for a ") + NodeTypeName(fit_options.kind) + " fit: " + invalid;
+  if (!invalid.empty()) {
+    out.error = invalid;  // e.g. a --fix field the manifest's kind does not have
+    return out;
+  }
+  if (o.resume && ReadCompleteOutputs(in, o, fit_options.kind, &out)) {
     out.status = BatchStatus::kSkipped;
     return out;
   }
@@ -84,17 +94,17 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   const std::string model_path = ModelPath(o, in), report_path = ReportPath(o, in);
   std::error_code ignored;
   try {
-    const CloudFit fit = FitCloudFile(in.path, o.fit);
+    const CloudFit fit = FitCloudFile(in.path, fit_options);
     out.points = fit.points;
     out.rms = fit.result.rms;
     out.inliers = fit.result.inliers.size();
     if (fit.result.success) {
-      WriteModelFile(fit.result.ToModel(o.fit.kind), model_path);
+      WriteModelFile(fit.result.ToModel(fit_options.kind), model_path);
       out.status = BatchStatus::kOk;
     } else {
       fs::remove(model_path, ignored);
       out.status = BatchStatus::kFailed;
-      out.error = std::string(NodeTypeName(o.fit.kind)) + " fit failed: " + fit.result.message;
+      out.error = std::string(NodeTypeName(fit_options.kind)) + " fit failed: " + fit.result.message;
     }
     WriteFileAtomically(report_path, fit.report.dump(2) + "\n");
   } catch (const std::exception& e) {

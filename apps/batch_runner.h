@@ -6,7 +6,8 @@
 //            each atomically (temporary name, then rename: a kill -9 leaves no partial file);
 //   failed   the fit gave a negative result (e.g. too few inliers): the report (success false)
 //            is written, no model (a stale model of an earlier run is removed);
-//   error    the cloud could not be read or an output not written: no model, no report;
+//   error    the cloud could not be read, an output not written, or the options do not suit the
+//            input's kind (a manifest's KIND with a --fix field it lacks): no model, no report;
 //   skipped  (resume) the model and report of an earlier run are complete: the model parses
 //            and is of the requested kind, the report parses and says success. Nothing is
 //            refitted; failed and error inputs are retried.
@@ -43,8 +44,9 @@ struct BatchOutcome {
 };
 
 struct BatchOptions {
-  PrimitiveFitOptions fit;           // used for every input (same seed: results do not depend
-                                     // on the order or the number of jobs)
+  PrimitiveFitOptions fit;           // used for every input, with the input's own kind when it
+                                     // has one (same seed: results do not depend on the order
+                                     // or the number of jobs)
   std::string out_dir;               // must exist
   int jobs = 1;                      // threads of the pool, >= 1
   bool resume = false;               // skip inputs whose outputs are complete

@@ -352,6 +352,34 @@ TEST_F(BatchCommand, ListsDirectoriesSortedThenManifestsInOrder) {
                                               out + "/" + fs::relative(t[3].path, out).string()}));
 }
 
+TEST_F(BatchCommand, AManifestLineMayNameItsOwnKind) {
+  const std::string out = testsupport::ScratchDir("batch_kinds");
+  WriteText(out + "/cyl.truth", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "cylinder",
+    "point": [0.5, -0.2, 0], "axis": [0, 0.6, 0.8], "radius": 0.7}})");
+  ASSERT_EQ(RunCommand(kCli + " sample " + out + "/cyl.truth --count 1500 --noise 0.002 --out '" + out + "/my cyl.xyz'")
+                .exit_code, 0);
+  WriteText(out + "/m.list", (*truths_)[0].path + "\n" + "my cyl.xyz\tcylinder\n");
+  const auto r = RunCommand(kCli + " batch --manifest " + out + "/m.list --model sphere --out-dir " + out + "/res");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(ReadJson(out + "/res/" + (*truths_)[0].name + ".model.json")["root"]["type"], "sphere");
+  const json cylinder = ReadJson(out + "/res/my cyl.model.json")["root"];
+  ASSERT_EQ(cylinder["type"], "cylinder");
+  EXPECT_NEAR(cylinder["radius"].get<double>(), 0.7, 0.005);
+  EXPECT_NEAR(std::abs(cylinder["axis"][1].get<double>()), 0.6, 0.01);
+  // --resume checks the kind of the line, not --model.
+  const auto again = RunCommand(kCli + " batch --manifest " + out + "/m.list --model sphere --out-dir " + out + "/res --resume");
+  EXPECT_NE(again.out.find("0 fitted, 2 skipped"), std::string::npos) << again.out;
+  // A --fix field the line's kind lacks fails that input alone.
+  const auto fixed = RunCommand(kCli + " batch --manifest " + out + "/m.list --model sphere --fix radius=1 --fix center=0,0,0 --out-dir " +
+                                out + "/fixed");
+  EXPECT_EQ(fixed.exit_code, 1) << fixed.out << fixed.err;
+  EXPECT_EQ(SummaryRows(out + "/fixed/summary.csv").at(out + "/my cyl.xyz")[1], "error");
+  WriteText(out + "/bad.list", (*truths_)[0].path + "\n\n" + (*truths_)[1].path + "\tblob\n");
+  const auto bad = RunCommand(kCli + " batch --manifest " + out + "/bad.list --model sphere --out-dir " + out + "/bad");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.list:3: unknown kind 'blob'"), std::string::npos) << bad.err;
+}
+
 TEST_F(BatchCommand, InvalidUsageExits2AndWritesNothing) {
   const std::string out = testsupport::ScratchDir("batch_usage") + "/out";
   const std::string in = Join(*truths_, 2);
