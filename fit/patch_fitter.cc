@@ -95,6 +95,38 @@ struct ConvexityGuard final : public ceres::CostFunction {
   }
 };
 
+template <int N>
+PatchPointResidual<N> MakePointResidual(int k, const Tetrahedron& tet, const std::vector<Vec>& points,
+                                        const std::vector<Vec>& normals, size_t i, double w) {
+  PatchPointResidual<N> r{k, &tet, {points[i].x(), points[i].y(), points[i].z()}, {0, 0, 0}, !normals.empty(), w};
+  if (!normals.empty())
+    for (int c = 0; c < 3; ++c) r.n[c] = normals[i][c];
+  return r;
+}
+
+// One block per point (1 residual, or 4 with the normal term) with a Cauchy loss, on `block`.
+template <typename Functor, int N, typename Make>
+void AddPointBlocks(ceres::Problem* problem, size_t count, bool with_normals, const Make& make, double loss_scale,
+                    double* block) {
+  for (size_t i = 0; i < count; ++i) {
+    Functor* f = new Functor(make(i));
+    ceres::CostFunction* cost = with_normals
+                                    ? static_cast<ceres::CostFunction*>(new ceres::AutoDiffCostFunction<Functor, 4, N>(f))
+                                    : new ceres::AutoDiffCostFunction<Functor, 1, N>(f);
+    problem->AddResidualBlock(cost, new ceres::CauchyLoss(loss_scale), block);
+  }
+}
+
+ceres::Solver::Summary SolvePatchProblem(ceres::Problem* problem, int max_iterations) {
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = max_iterations;
+  so.num_threads = 2;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, problem, &summary);
+  return summary;
+}
+
 std::vector<double> BasisAt(int k, const Tetrahedron& tet, const Vec& x) {
   const int n = static_cast<int>(NumBernsteinControlPoints(k));
   std::vector<double> basis(n), unit(n, 0.0);
@@ -147,23 +179,12 @@ std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b,
                            const std::vector<Vec>& normals, const PatchFitOptions& options, double loss_scale,
                            bool guard, std::string* message) {
   ceres::Problem problem;
-  for (size_t i = 0; i < points.size(); ++i) {
-    PatchPointResidual<N> r{k, &tet, {points[i].x(), points[i].y(), points[i].z()}, {0, 0, 0}, !normals.empty(),
-                            options.normal_weight};
-    if (!normals.empty())
-      for (int c = 0; c < 3; ++c) r.n[c] = normals[i][c];
-    ceres::CostFunction* cost = normals.empty()
-                                    ? static_cast<ceres::CostFunction*>(new ceres::AutoDiffCostFunction<PatchPointResidual<N>, 1, N>(new PatchPointResidual<N>(r)))
-                                    : new ceres::AutoDiffCostFunction<PatchPointResidual<N>, 4, N>(new PatchPointResidual<N>(r));
-    problem.AddResidualBlock(cost, new ceres::CauchyLoss(loss_scale), b.data());
-  }
+  AddPointBlocks<PatchPointResidual<N>, N>(
+      &problem, points.size(), !normals.empty(),
+      [&](size_t i) { return MakePointResidual<N>(k, tet, points, normals, i, options.normal_weight); }, loss_scale,
+      b.data());
   if (guard) problem.AddResidualBlock(new ConvexityGuard(k, N, 1e-6), nullptr, b.data());
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = options.max_iterations;
-  so.num_threads = 2;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  const ceres::Solver::Summary summary = SolvePatchProblem(&problem, options.max_iterations);
   if (message) *message = summary.IsSolutionUsable() ? "converged" : summary.message;
   return b;
 }
@@ -197,24 +218,14 @@ std::vector<double> ConvexQuadricFit(const Tetrahedron& tet, const std::vector<d
   const Eigen::Matrix3d L = start.llt().matrixL();
   std::vector<double> z = {L(0, 0), L(1, 0), L(1, 1), L(2, 0), L(2, 1), L(2, 2), b[3], b[6], b[8], b[9]};
   ceres::Problem problem;
-  for (size_t i = 0; i < points.size(); ++i) {
-    ConvexQuadricPointResidual r{{2, &tet, {points[i].x(), points[i].y(), points[i].z()}, {0, 0, 0},
-                                  !normals.empty(), options.normal_weight},
-                                 margin};
-    if (!normals.empty())
-      for (int c = 0; c < 3; ++c) r.inner.n[c] = normals[i][c];
-    ceres::CostFunction* cost =
-        normals.empty()
-            ? static_cast<ceres::CostFunction*>(new ceres::AutoDiffCostFunction<ConvexQuadricPointResidual, 1, 10>(new ConvexQuadricPointResidual(r)))
-            : new ceres::AutoDiffCostFunction<ConvexQuadricPointResidual, 4, 10>(new ConvexQuadricPointResidual(r));
-    problem.AddResidualBlock(cost, new ceres::CauchyLoss(loss_scale), z.data());
-  }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = options.max_iterations;
-  so.num_threads = 2;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  AddPointBlocks<ConvexQuadricPointResidual, 10>(
+      &problem, points.size(), !normals.empty(),
+      [&](size_t i) {
+        return ConvexQuadricPointResidual{MakePointResidual<10>(2, tet, points, normals, i, options.normal_weight),
+                                          margin};
+      },
+      loss_scale, z.data());
+  SolvePatchProblem(&problem, options.max_iterations);
   std::vector<double> out(10);
   ConvexQuadricControlPoints(z.data(), margin, out.data());
   return out;

@@ -21,11 +21,8 @@ struct ConeEvaluator {
     using std::cos;
     using std::sin;
     using std::sqrt;
-    const T inv = 1.0 / Norm3(p + 3);
-    const T u[3] = {p[3] * inv, p[4] * inv, p[5] * inv};
-    T d[3], rho;
-    Sub3(x, p, d);
-    const T h = AxialRadial(u, d, &rho);
+    T rho;
+    const T h = AxialCoordinates(p, p + 3, x, &rho);
     const T s = sin(p[6]), c = cos(p[6]);
     if (rho * s + h * c >= 0.0) return rho * c - h * s;
     return sqrt(rho * rho + h * h);

@@ -11,11 +11,8 @@ struct CylinderEvaluator {
   static constexpr int kNumParameters = 7;
   template <typename T>
   static T Evaluate(const T* p, const T* x) {
-    const T inv = 1.0 / Norm3(p + 3);
-    const T u[3] = {p[3] * inv, p[4] * inv, p[5] * inv};
-    T d[3], radial;
-    Sub3(x, p, d);
-    AxialRadial(u, d, &radial);
+    T radial;
+    AxialCoordinates(p, p + 3, x, &radial);
     return radial - p[6];
   }
 };

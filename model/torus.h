@@ -14,11 +14,8 @@ struct TorusEvaluator {
   template <typename T>
   static T Evaluate(const T* p, const T* x) {
     using std::sqrt;
-    const T inv = 1.0 / Norm3(p + 3);
-    const T u[3] = {p[3] * inv, p[4] * inv, p[5] * inv};
-    T d[3], rho;
-    Sub3(x, p, d);
-    const T h = AxialRadial(u, d, &rho);
+    T rho;
+    const T h = AxialCoordinates(p, p + 3, x, &rho);
     const T q = rho - p[6];
     return sqrt(q * q + h * h) - p[7];
   }

@@ -43,4 +43,15 @@ T AxialRadial(const T* u, const T* d, T* radial) {
   return Dot3(u, d);
 }
 
+// Axial and radial coordinates of x about the line through `origin` along `axis` (any non-zero
+// length): returns h = (x - origin) . u and sets *radial = |(x - origin) x u|, u = axis / |axis|.
+template <typename T>
+T AxialCoordinates(const T* origin, const T* axis, const T* x, T* radial) {
+  const T inv = 1.0 / Norm3(axis);
+  const T u[3] = {axis[0] * inv, axis[1] * inv, axis[2] * inv};
+  T d[3];
+  Sub3(x, origin, d);
+  return AxialRadial(u, d, radial);
+}
+
 }  // namespace implicitfit
