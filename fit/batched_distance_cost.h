@@ -3,20 +3,25 @@
 //
 // Why batched: one AutoDiffCostFunction per point costs a heap allocation and a virtual call per
 // point and dominated the profile of the plain per-point fit; a batch of a few hundred points
-// per block keeps Ceres' multithreaded evaluation and amortises the rest. Derivatives are still
-// automatic: each point is evaluated once with ceres::Jet<double, P> (P = all parameters of the
-// primitive), and the Jet's derivative vector is scattered into the Jacobians of the parameter
-// blocks. The parameter blocks are the primitive's named fields in flat order (e.g. cylinder:
-// point 3, axis 3, radius 1), so manifolds and bounds can be set per field.
+// per block keeps Ceres' multithreaded evaluation and amortises the rest.
+// Derivatives: closed form for the five primitives (fit/primitive_jacobians.h; the
+// parameter-only quantities are computed once per batch, then a few dozen flops per point);
+// for any other evaluator, or with kAnalytic = false, each point is evaluated once with
+// ceres::Jet<double, P> (P = all parameters of the primitive). Either way the point's
+// derivative vector is scattered into the Jacobians of the parameter blocks. The parameter
+// blocks are the primitive's named fields in flat order (e.g. cylinder: point 3, axis 3,
+// radius 1), so manifolds and bounds can be set per field.
 #pragma once
 
 #include <ceres/ceres.h>
 
 #include <vector>
 
+#include "fit/primitive_jacobians.h"
+
 namespace implicitfit {
 
-template <typename Evaluator>
+template <typename Evaluator, bool kAnalytic = PrimitiveDistance<Evaluator>::kAvailable>
 class BatchedDistanceCost final : public ceres::CostFunction {
  public:
   static constexpr int kP = Evaluator::kNumParameters;
@@ -34,6 +39,36 @@ class BatchedDistanceCost final : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    if constexpr (kAnalytic)
+      return EvaluateAnalytic(parameters, residuals, jacobians);
+    else
+      return EvaluateJets(parameters, residuals, jacobians);
+  }
+
+ private:
+  bool EvaluateAnalytic(double const* const* parameters, double* residuals, double** jacobians) const {
+    const std::vector<int32_t>& sizes = parameter_block_sizes();
+    double p[kP];
+    for (size_t b = 0; b < sizes.size(); ++b)
+      for (int j = 0; j < sizes[b]; ++j) p[offsets_[b] + j] = parameters[b][j];
+    const PrimitiveDistance<Evaluator> f(p);
+    const int n = static_cast<int>(indices_.size());
+    if (!jacobians) {
+      for (int i = 0; i < n; ++i) residuals[i] = f(xyz_ + 3 * indices_[i], nullptr, nullptr);
+      return true;
+    }
+    double dp[kP];
+    for (int i = 0; i < n; ++i) {
+      residuals[i] = f(xyz_ + 3 * indices_[i], dp, nullptr);
+      for (size_t b = 0; b < sizes.size(); ++b) {
+        if (!jacobians[b]) continue;
+        for (int j = 0; j < sizes[b]; ++j) jacobians[b][i * sizes[b] + j] = dp[offsets_[b] + j];
+      }
+    }
+    return true;
+  }
+
+  bool EvaluateJets(double const* const* parameters, double* residuals, double** jacobians) const {
     using Jet = ceres::Jet<double, kP>;
     const std::vector<int32_t>& sizes = parameter_block_sizes();
     double p[kP];
@@ -61,7 +96,6 @@ class BatchedDistanceCost final : public ceres::CostFunction {
     return true;
   }
 
- private:
   const double* xyz_;
   std::vector<int> indices_;
   std::vector<int> offsets_;

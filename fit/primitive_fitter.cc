@@ -14,12 +14,15 @@
 
 #include "fit/batched_distance_cost.h"
 #include "fit/minimal_samples.h"
-#include "model/dual3.h"
+#include "fit/primitive_jacobians.h"
 
 namespace implicitfit {
 namespace {
 
 constexpr int kBatch = 256;
+// Solver stops when the next step would move the parameters by less than this many standard
+// deviations (see the function tolerance below).
+constexpr double kStepSd = 0.05;
 
 bool IsPositionField(const std::string& f) { return f == "center" || f == "point" || f == "apex"; }
 bool IsDirectionField(const std::string& f) { return f == "axis" || f == "normal"; }
@@ -59,16 +62,21 @@ void Canonicalise(NodeType kind, std::vector<double>* p, const Eigen::Vector3d& 
   }
 }
 
+// Closed-form f and grad f (fit/primitive_jacobians.h) for the inlier tests.
 template <typename E>
 struct Kind {
-  static double F(const double* p, const double* x) { return E::Evaluate(p, x); }
-  // |cos(grad f, n)| at x.
-  static double NormalCos(const std::vector<Dual3>& p, const Eigen::Vector3d& x, const Eigen::Vector3d& n) {
-    const Dual3 xd[3] = {Dual3(x[0], Eigen::Vector3d::UnitX()), Dual3(x[1], Eigen::Vector3d::UnitY()),
-                         Dual3(x[2], Eigen::Vector3d::UnitZ())};
-    const Eigen::Vector3d g = E::Evaluate(p.data(), xd).v;
-    const double gn = g.norm();
-    return gn > 0 ? std::abs(g.dot(n)) / gn : 0.0;
+  static_assert(PrimitiveDistance<E>::kAvailable, "the primitive fitter needs closed-form derivatives");
+  // True when |f(x)| < limit and |cos(grad f(x), n)| >= min_cos.
+  static bool Supports(const PrimitiveDistance<E>& f, const Eigen::Vector3d& x, const Eigen::Vector3d& n, double limit,
+                       double min_cos) {
+    double g[3];
+    if (!(std::abs(f(x.data(), nullptr, g)) < limit)) return false;
+    return NormalCos(g, n) >= min_cos;
+  }
+  // |cos(g, n)|, 0 for a zero gradient.
+  static double NormalCos(const double* g, const Eigen::Vector3d& n) {
+    const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    return gn > 0 ? std::abs(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) / gn : 0.0;
   }
 };
 
@@ -193,13 +201,9 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   for (int t = 0; t < needed; ++t) {
     if (!draw.Draw(&h)) continue;
     apply_fixed(&h);
-    const std::vector<Dual3> hd(h.begin(), h.end());
+    const PrimitiveDistance<E> hf(h.data());
     int score = 0;
-    for (size_t i : sub) {
-      if (std::abs(Kind<E>::F(h.data(), pts[i].data())) >= tau) continue;
-      if (Kind<E>::NormalCos(hd, pts[i], input_normals[i]) < options.normal_cos) continue;
-      ++score;
-    }
+    for (size_t i : sub) score += Kind<E>::Supports(hf, pts[i], input_normals[i], tau, options.normal_cos);
     if (score > best_score) {
       best_score = score;
       best = h;
@@ -232,12 +236,10 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   const std::vector<int>* pool = &working;
   auto classify = [&](const std::vector<double>& p, double limit) {
     std::vector<int> in;
-    const std::vector<Dual3> pd(p.begin(), p.end());
-    for (int i : *pool) {
-      if (std::abs(Kind<E>::F(p.data(), pts[i].data())) >= limit) continue;
-      if (Kind<E>::NormalCos(pd, pts[i], input_normals[i]) < options.normal_cos) continue;
-      in.push_back(static_cast<int>(i));
-    }
+    in.reserve(pool->size());
+    const PrimitiveDistance<E> f(p.data());
+    for (int i : *pool)
+      if (Kind<E>::Supports(f, pts[i], input_normals[i], limit, options.normal_cos)) in.push_back(i);
     return in;
   };
   inliers = classify(params, band);
@@ -292,8 +294,17 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solver_options.num_threads = threads;
     solver_options.max_num_iterations = 50;
-    solver_options.function_tolerance = 1e-10;
+    // Stop once a step would lower the cost by less than kStepSd^2 / N of itself. Near the
+    // optimum a Gauss-Newton step delta lowers the cost 0.5 sum r^2 ~ 0.5 N sigma^2 by
+    // 0.5 delta^T J^T J delta = 0.5 sigma^2 m^2, m the Mahalanobis length of delta in units of the
+    // parameters' standard deviation; so the step left untaken is at most ~kStepSd of a standard
+    // deviation (never looser than Ceres' default 1e-6).
+    solver_options.function_tolerance =
+        std::min(1e-6, kStepSd * kStepSd / static_cast<double>(inliers.size()));
     solver_options.parameter_tolerance = 1e-12;
+    // Bounds (radii, the cone angle) are enforced by projecting each step onto them; Ceres'
+    // projected line search on top costs a second Jacobian evaluation per iteration.
+    solver_options.max_num_line_search_step_size_iterations = 0;
     ceres::Solve(solver_options, problem.get(), &summary);
     result.iterations += static_cast<int>(summary.iterations.size());
     result.rounds = round + 1;
@@ -305,7 +316,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     // Re-estimate the scale from the inliers, re-classify.
     std::vector<double> abs_r;
     abs_r.reserve(inliers.size());
-    for (int i : inliers) abs_r.push_back(std::abs(Kind<E>::F(params.data(), pts[i].data())));
+    const PrimitiveDistance<E> f(params.data());
+    for (int i : inliers) abs_r.push_back(std::abs(f(pts[i].data(), nullptr, nullptr)));
     result.sigma = 1.4826 * Median(abs_r);
     band = std::max(options.band_sigmas * result.sigma, 1e-12);
     std::vector<int> next = classify(params, band);
@@ -327,12 +339,13 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   // 3. Figures and uncertainties.
   result.inliers = inliers;
   double ss = 0.0, angle_sum = 0.0;
-  const std::vector<Dual3> pd(params.begin(), params.end());
+  const PrimitiveDistance<E> pf(params.data());
   for (int i : inliers) {
-    const double r = Kind<E>::F(params.data(), pts[i].data());
+    double g[3];
+    const double r = pf(pts[i].data(), nullptr, g);
     ss += r * r;
     result.max_abs = std::max(result.max_abs, std::abs(r));
-    angle_sum += std::acos(std::min(1.0, Kind<E>::NormalCos(pd, pts[i], input_normals[i]))) * 180.0 / M_PI;
+    angle_sum += std::acos(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
   }
   result.rms = std::sqrt(ss / inliers.size());
   result.mean_normal_angle_deg = angle_sum / inliers.size();
