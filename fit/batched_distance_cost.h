@@ -11,6 +11,9 @@
 // derivative vector is scattered into the Jacobians of the parameter blocks. The parameter
 // blocks are the primitive's named fields in flat order (e.g. cylinder: point 3, axis 3,
 // radius 1), so manifolds and bounds can be set per field.
+// The primitive fitter hands Ceres the compressed form of such a chunk instead
+// (fit/compressed_distance_cost.h: P + 1 residuals, same normal equations); this per-point form
+// is its reference in the tests and serves evaluators without closed-form derivatives.
 #pragma once
 
 #include <ceres/ceres.h>
@@ -21,13 +24,13 @@
 
 namespace implicitfit {
 
-template <typename Evaluator, bool kAnalytic = PrimitiveDistance<Evaluator>::kAvailable>
-class BatchedDistanceCost final : public ceres::CostFunction {
- public:
-  static constexpr int kP = Evaluator::kNumParameters;
-
-  // xyz: 3 doubles per point, owned by the caller and alive while the cost is used.
-  BatchedDistanceCost(const double* xyz, std::vector<int> indices, const std::vector<int>& block_sizes)
+// What the point-chunk costs share: the points (xyz, 3 doubles per point, owned by the caller
+// and alive while the cost is used), the chunk's indices into them, and the parameter blocks
+// (the primitive's fields, block_sizes summing to kP) with their offsets in the flat layout.
+class PointChunkCost : public ceres::CostFunction {
+ protected:
+  PointChunkCost(const double* xyz, std::vector<int> indices, const std::vector<int>& block_sizes,
+                 int num_residuals)
       : xyz_(xyz), indices_(std::move(indices)) {
     int offset = 0;
     for (int size : block_sizes) {
@@ -35,8 +38,28 @@ class BatchedDistanceCost final : public ceres::CostFunction {
       offsets_.push_back(offset);
       offset += size;
     }
-    set_num_residuals(static_cast<int>(indices_.size()));
+    set_num_residuals(num_residuals < 0 ? static_cast<int>(indices_.size()) : num_residuals);
   }
+  // The blocks' values in the flat layout.
+  void Gather(double const* const* parameters, double* p) const {
+    const std::vector<int32_t>& sizes = parameter_block_sizes();
+    for (size_t b = 0; b < sizes.size(); ++b)
+      for (int j = 0; j < sizes[b]; ++j) p[offsets_[b] + j] = parameters[b][j];
+  }
+
+  const double* xyz_;
+  std::vector<int> indices_;
+  std::vector<int> offsets_;
+};
+
+template <typename Evaluator, bool kAnalytic = PrimitiveDistance<Evaluator>::kAvailable>
+class BatchedDistanceCost final : public PointChunkCost {
+ public:
+  static constexpr int kP = Evaluator::kNumParameters;
+
+  // One residual per point of `indices` (see PointChunkCost).
+  BatchedDistanceCost(const double* xyz, std::vector<int> indices, const std::vector<int>& block_sizes)
+      : PointChunkCost(xyz, std::move(indices), block_sizes, -1) {}
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     if constexpr (kAnalytic)
@@ -49,8 +72,7 @@ class BatchedDistanceCost final : public ceres::CostFunction {
   bool EvaluateAnalytic(double const* const* parameters, double* residuals, double** jacobians) const {
     const std::vector<int32_t>& sizes = parameter_block_sizes();
     double p[kP];
-    for (size_t b = 0; b < sizes.size(); ++b)
-      for (int j = 0; j < sizes[b]; ++j) p[offsets_[b] + j] = parameters[b][j];
+    Gather(parameters, p);
     const PrimitiveDistance<Evaluator> f(p);
     const int n = static_cast<int>(indices_.size());
     if (!jacobians) {
@@ -95,10 +117,6 @@ class BatchedDistanceCost final : public ceres::CostFunction {
     }
     return true;
   }
-
-  const double* xyz_;
-  std::vector<int> indices_;
-  std::vector<int> offsets_;
 };
 
 }  // namespace implicitfit

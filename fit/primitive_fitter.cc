@@ -12,14 +12,15 @@
 #include <iterator>
 #include <thread>
 
-#include "fit/batched_distance_cost.h"
+#include "fit/compressed_distance_cost.h"
 #include "fit/minimal_samples.h"
 #include "fit/primitive_jacobians.h"
 
 namespace implicitfit {
 namespace {
 
-constexpr int kBatch = 256;
+// Points per residual block (fit/compressed_distance_cost.h).
+constexpr size_t kChunk = 4096;
 // Solver stops when the next step would move the parameters by less than this many standard
 // deviations (see the function tolerance below).
 constexpr double kStepSd = 0.05;
@@ -272,9 +273,11 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     problem = std::make_unique<ceres::Problem>(problem_options);
     std::vector<double*> block_ptrs;
     for (auto& b : blocks) block_ptrs.push_back(b.data());
-    for (size_t s = 0; s < inliers.size(); s += kBatch) {
-      std::vector<int> batch(inliers.begin() + s, inliers.begin() + std::min(inliers.size(), s + kBatch));
-      problem->AddResidualBlock(new BatchedDistanceCost<E>(xyz.data(), std::move(batch), block_sizes), nullptr,
+    // One compressed block (P + 1 residuals standing for a chunk of points, with the same
+    // normal equations) per chunk: the chunks are evaluated in parallel.
+    for (size_t s = 0; s < inliers.size(); s += kChunk) {
+      std::vector<int> chunk(inliers.begin() + s, inliers.begin() + std::min(inliers.size(), s + kChunk));
+      problem->AddResidualBlock(new CompressedDistanceCost<E>(xyz.data(), std::move(chunk), block_sizes), nullptr,
                                 block_ptrs);
     }
     for (size_t b = 0; b < fields.size(); ++b) {

@@ -6,7 +6,9 @@
 //    tau defaults to 1% of the cloud's bounding-box diagonal.
 // 2. Robust refinement to the maximum-likelihood fit on the inliers: least squares of the
 //    orthogonal distances f(x_i) (every primitive's f is an exact signed distance) over the
-//    current inlier set, in Ceres with batched residual blocks (fit/batched_distance_cost.h);
+//    current inlier set, in Ceres with closed-form derivatives (fit/primitive_jacobians.h), each
+//    chunk of points one residual block of P + 1 residuals with the same normal equations
+//    (fit/compressed_distance_cost.h);
 //    then the noise scale is re-estimated as sigma = 1.4826 median |f| of the inliers and the
 //    inlier band reset to |f| < band_sigmas * sigma; repeated until the inlier set is stable,
 //    first on a random working subset of the points, then on all of them.

@@ -1,18 +1,21 @@
 // The closed-form derivatives of fit/primitive_jacobians.h against references that do not come
 // from that file: central differences of the model evaluators (model/*.h) in double, and
-// forward-mode ceres::Jet through the same evaluators. One typed suite for every primitive;
+// forward-mode ceres::Jet through the same evaluators; and the compressed residual block
+// (fit/compressed_distance_cost.h) against the normal equations of the Jet path. One typed suite for every primitive;
 // random parameters and points from a seeded RNG, including the cone's apex branch (points
 // behind the apex) and points inside and outside every surface.
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/Dense>
 #include <cmath>
 #include <numeric>
 #include <random>
 #include <vector>
 
 #include "fit/batched_distance_cost.h"
+#include "fit/compressed_distance_cost.h"
 #include "fit/primitive_jacobians.h"
 #include "model/model.h"
 
@@ -88,6 +91,19 @@ bool NearKink(const std::vector<double>& p, const Vec& x, double margin) {
     return true;
   if (std::is_same<E, TorusEvaluator>::value && std::hypot(rho - p[6], h) < margin) return true;
   return false;
+}
+
+// The sizes of the kind's parameter fields: the fitter's parameter blocks.
+template <typename E>
+std::vector<int> FieldSizes() {
+  NodeType kind = NodeType::kPlane;
+  if (std::is_same<E, SphereEvaluator>::value) kind = NodeType::kSphere;
+  if (std::is_same<E, CylinderEvaluator>::value) kind = NodeType::kCylinder;
+  if (std::is_same<E, ConeEvaluator>::value) kind = NodeType::kCone;
+  if (std::is_same<E, TorusEvaluator>::value) kind = NodeType::kTorus;
+  std::vector<int> sizes;
+  for (const ParameterField& field : ParameterFieldsOf(kind)) sizes.push_back(field.size);
+  return sizes;
 }
 
 template <typename E>
@@ -177,13 +193,7 @@ TYPED_TEST(PrimitiveJacobians, BatchedCostAgreesWithItsJetPath) {
   }
   // xyz is compacted: index i of the batch is the i-th kept point.
   for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<int>(i);
-  NodeType kind = NodeType::kPlane;
-  if (std::is_same<E, SphereEvaluator>::value) kind = NodeType::kSphere;
-  if (std::is_same<E, CylinderEvaluator>::value) kind = NodeType::kCylinder;
-  if (std::is_same<E, ConeEvaluator>::value) kind = NodeType::kCone;
-  if (std::is_same<E, TorusEvaluator>::value) kind = NodeType::kTorus;
-  std::vector<int> sizes;
-  for (const ParameterField& field : ParameterFieldsOf(kind)) sizes.push_back(field.size);
+  const std::vector<int> sizes = FieldSizes<E>();
   ASSERT_EQ(std::accumulate(sizes.begin(), sizes.end(), 0), P);
 
   const BatchedDistanceCost<E, true> analytic(xyz.data(), indices, sizes);
@@ -217,6 +227,81 @@ TYPED_TEST(PrimitiveJacobians, BatchedCostAgreesWithItsJetPath) {
       continue;
     }
     for (size_t k = 0; k < ja[b].size(); ++k) EXPECT_NEAR(ja[b][k], jj[b][k], 1e-11 * (1.0 + std::abs(jj[b][k])));
+  }
+}
+
+// The compressed block (P + 1 residuals) reproduces J^T J, J^T r and r^T r of the per-point
+// residuals (Jet path), also with a constant block and for the cylinder's gauge freedom.
+TYPED_TEST(PrimitiveJacobians, CompressedCostKeepsTheNormalEquations) {
+  using E = TypeParam;
+  constexpr int P = E::kNumParameters;
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 5; ++trial) {
+    const std::vector<double> p = RandomParameters<E>(rng);
+    std::vector<double> xyz;
+    for (const Vec& x : RandomPoints(p, rng, 400))
+      if (!NearKink<E>(p, x, 1e-9)) xyz.insert(xyz.end(), x.data(), x.data() + 3);
+    std::vector<int> indices(xyz.size() / 3);
+    std::iota(indices.begin(), indices.end(), 0);
+    const int n = static_cast<int>(indices.size());
+    const std::vector<int> sizes = FieldSizes<E>();
+    std::vector<const double*> blocks;
+    for (int b = 0, at = 0; b < static_cast<int>(sizes.size()); at += sizes[b], ++b) blocks.push_back(p.data() + at);
+
+    // Reference: the full n x P Jacobian and residuals from the Jet path.
+    const BatchedDistanceCost<E, false> full(xyz.data(), indices, sizes);
+    Eigen::VectorXd r(n);
+    Eigen::MatrixXd J(n, P);
+    {
+      std::vector<std::vector<double>> jb;
+      std::vector<double*> ptrs;
+      for (int s : sizes) jb.emplace_back(n * s);
+      for (auto& v : jb) ptrs.push_back(v.data());
+      ASSERT_TRUE(full.Evaluate(blocks.data(), r.data(), ptrs.data()));
+      for (size_t b = 0, at = 0; b < sizes.size(); at += sizes[b], ++b)
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < sizes[b]; ++j) J(i, at + j) = jb[b][i * sizes[b] + j];
+    }
+    const Eigen::MatrixXd A = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
+    const double c = r.squaredNorm();
+
+    const CompressedDistanceCost<E> compressed(xyz.data(), indices, sizes);
+    ASSERT_EQ(compressed.num_residuals(), P + 1);
+    for (int constant = -1; constant < static_cast<int>(sizes.size()); ++constant) {
+      Eigen::VectorXd rc(P + 1);
+      std::vector<std::vector<double>> jb;
+      std::vector<double*> ptrs;
+      for (int s : sizes) jb.emplace_back((P + 1) * s, NAN);
+      for (auto& v : jb) ptrs.push_back(v.data());
+      if (constant >= 0) ptrs[constant] = nullptr;
+      ASSERT_TRUE(compressed.Evaluate(blocks.data(), rc.data(), ptrs.data()));
+      EXPECT_NEAR(rc.squaredNorm(), c, 1e-10 * c);
+      std::vector<int> free;  // columns of the free blocks
+      for (size_t b = 0, at = 0; b < sizes.size(); at += sizes[b], ++b)
+        if (static_cast<int>(b) != constant)
+          for (int j = 0; j < sizes[b]; ++j) free.push_back(static_cast<int>(at) + j);
+      Eigen::MatrixXd Jc(P + 1, free.size());
+      for (size_t b = 0, col = 0; b < sizes.size(); ++b) {
+        if (static_cast<int>(b) == constant) {
+          for (double v : jb[b]) EXPECT_TRUE(std::isnan(v)) << "the constant block's Jacobian was written";
+          continue;
+        }
+        for (int j = 0; j < sizes[b]; ++j, ++col)
+          for (int k = 0; k <= P; ++k) Jc(k, col) = jb[b][k * sizes[b] + j];
+      }
+      const Eigen::MatrixXd Ac = Jc.transpose() * Jc;
+      const Eigen::VectorXd gc = Jc.transpose() * rc;
+      const double scale_a = A.cwiseAbs().maxCoeff(), scale_g = g.cwiseAbs().maxCoeff() + 1e-300;
+      for (size_t u = 0; u < free.size(); ++u) {
+        EXPECT_NEAR(gc[u], g[free[u]], 1e-9 * scale_g) << "trial " << trial << " column " << free[u];
+        for (size_t v = 0; v < free.size(); ++v)
+          EXPECT_NEAR(Ac(u, v), A(free[u], free[v]), 1e-10 * scale_a) << "trial " << trial;
+      }
+    }
+    Eigen::VectorXd only(P + 1);
+    ASSERT_TRUE(compressed.Evaluate(blocks.data(), only.data(), nullptr));
+    EXPECT_NEAR(only.squaredNorm(), c, 1e-12 * c);
   }
 }
 
