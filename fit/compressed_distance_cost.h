@@ -70,7 +70,8 @@ class CompressedDistanceCost final : public PointChunkCost {
       const double r = f(xyz_ + 3 * i, dp.data(), nullptr);
       c += r * r;
       g += r * dp;
-      a.template selfadjointView<Eigen::Lower>().rankUpdate(dp);
+      for (int j = 0; j < kP; ++j)  // lower triangle; Eigen's rankUpdate is an out-of-line call per point
+        for (int k = 0; k <= j; ++k) a(j, k) += dp[j] * dp[k];
     }
     a = a.template selfadjointView<Eigen::Lower>();
     if (!std::isfinite(c) || !a.allFinite()) return false;

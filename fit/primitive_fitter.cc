@@ -122,6 +122,17 @@ struct Hypothesizer {
   }
 };
 
+// Makes the first k entries of *v a uniformly random k-subset of its entries (the first k steps
+// of Fisher-Yates): O(k) instead of shuffling all of v.
+template <typename T>
+void PartialShuffle(std::vector<T>* v, size_t k, std::mt19937& rng) {
+  const size_t n = v->size();
+  for (size_t i = 0; i < std::min(k, n); ++i) {
+    std::uniform_int_distribution<size_t> pick(i, n - 1);
+    std::swap((*v)[i], (*v)[pick(rng)]);
+  }
+}
+
 double Median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   const size_t mid = v.size() / 2;
@@ -187,7 +198,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<size_t> sub(N);
   std::iota(sub.begin(), sub.end(), 0);
   if (N > static_cast<size_t>(options.score_subsample)) {
-    std::shuffle(sub.begin(), sub.end(), rng);
+    PartialShuffle(&sub, options.score_subsample, rng);
     sub.resize(options.score_subsample);
   }
   Hypothesizer draw{kind, pts, input_normals, rng};
@@ -228,7 +239,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<int> working(N);
   std::iota(working.begin(), working.end(), 0);
   if (N > static_cast<size_t>(options.working_subsample)) {
-    std::shuffle(working.begin(), working.end(), rng);
+    PartialShuffle(&working, options.working_subsample, rng);
     working.resize(options.working_subsample);
     std::sort(working.begin(), working.end());
   }
