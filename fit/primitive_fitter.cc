@@ -1,6 +1,7 @@
 #include "fit/primitive_fitter.h"
 
 #include <ceres/ceres.h>
+#include <ceres/context.h>
 #include <ceres/covariance.h>
 #include <ceres/sphere_manifold.h>
 
@@ -259,6 +260,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<int> block_sizes;
   for (const ParameterField& f : fields) block_sizes.push_back(f.size);
   ceres::Solver::Summary summary;
+  // One Ceres context (its thread pool) for every round's problem, instead of one per problem.
+  std::unique_ptr<ceres::Context> context(ceres::Context::Create());
   std::unique_ptr<ceres::Problem> problem;
   std::vector<std::vector<double>> blocks;
   const int threads = options.num_threads > 0 ? options.num_threads
@@ -281,6 +284,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
       k += f.size;
     }
     ceres::Problem::Options problem_options;
+    problem_options.context = context.get();
     problem = std::make_unique<ceres::Problem>(problem_options);
     std::vector<double*> block_ptrs;
     for (auto& b : blocks) block_ptrs.push_back(b.data());
