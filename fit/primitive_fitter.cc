@@ -134,6 +134,17 @@ void PartialShuffle(std::vector<T>* v, size_t k, std::mt19937& rng) {
   }
 }
 
+// acos(c) for c in [0, 1] within 2.2e-8 rad (1.3e-6 degrees): sqrt(1 - c) times a degree-7
+// polynomial (Abramowitz & Stegun 4.4.46), a fraction of std::acos' cost for the mean normal
+// angle over every inlier.
+double AcosUnit(double c) {
+  double q = -0.0012624911;
+  for (double a : {0.0066700901, -0.0170881256, 0.0308918810, -0.0501743046, 0.0889789874, -0.2145988016,
+                   1.5707963050})
+    q = q * c + a;
+  return std::sqrt(1.0 - c) * q;
+}
+
 double Median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   const size_t mid = v.size() / 2;
@@ -363,7 +374,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     const double r = pf(pts[i].data(), nullptr, g);
     ss += r * r;
     result.max_abs = std::max(result.max_abs, std::abs(r));
-    angle_sum += std::acos(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
+    angle_sum += AcosUnit(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
   }
   result.rms = std::sqrt(ss / inliers.size());
   result.mean_normal_angle_deg = angle_sum / inliers.size();
