@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "datasets/cloud_file.h"
-#include "datasets/io_error.h"
 #include "datasets/normal_estimation.h"
 
 namespace implicitfit {
@@ -17,7 +16,9 @@ PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_actio
     const NormalResult result = EnsureOrientedNormals(&cloud, options);
     if (normals_action) *normals_action = result.action;
   } catch (const std::invalid_argument& e) {
-    throw FileError(path, e.what());
+    // Too few points to estimate normals: not an invalid file but degenerate data; the fit
+    // that follows fails with its own reason (exit 1).
+    if (normals_action) *normals_action = std::string("none (") + e.what() + ")";
   }
   return cloud;
 }

@@ -2,7 +2,9 @@
 // are kept (re-oriented when their signs are inconsistent), missing ones are estimated and
 // oriented toward the file's viewpoint when it gives one, else by MST propagation
 // (datasets/normal_estimation.h). `normals_action` says which happened, for reports.
-// Throws InputError naming the file (unreadable, or too few points to estimate normals).
+// Throws InputError naming the file when it cannot be read. A cloud too small to estimate
+// normals is returned without them (`normals_action` says so): degenerate data, left to the
+// fit to refuse with exit 1.
 #pragma once
 
 #include <string>
