@@ -172,7 +172,9 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     lo = lo.cwiseMin(pts[i]);
     hi = hi.cwiseMax(pts[i]);
   }
-  const std::vector<double> xyz(pts[0].data(), pts[0].data() + 3 * N);
+  // The costs read pts as a flat xyz array (Vector3d is three packed doubles), no second copy.
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "Vector3d must be three packed doubles");
+  const double* xyz = pts[0].data();
   const double tau = options.threshold > 0 ? options.threshold : 0.01 * (hi - lo).norm();
 
   // Normals for hypotheses: given ones, or none (then only the kinds that need none could be
@@ -303,7 +305,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     // normal equations) per chunk: the chunks are evaluated in parallel.
     for (size_t s = 0; s < inliers.size(); s += kChunk) {
       std::vector<int> chunk(inliers.begin() + s, inliers.begin() + std::min(inliers.size(), s + kChunk));
-      problem->AddResidualBlock(new CompressedDistanceCost<E>(xyz.data(), std::move(chunk), block_sizes), nullptr,
+      problem->AddResidualBlock(new CompressedDistanceCost<E>(xyz, std::move(chunk), block_sizes), nullptr,
                                 block_ptrs);
     }
     for (size_t b = 0; b < fields.size(); ++b) {
