@@ -15,7 +15,5 @@ CommandAction AddCheckCommand(CLI::App& app);
 CommandAction AddFitCommand(CLI::App& app);
 CommandAction AddSampleCommand(CLI::App& app);
 CommandAction AddBatchCommand(CLI::App& app);
-CommandAction AddNotYetAvailableCommand(CLI::App& app, const std::string& name,
-                                        const std::string& description);
 
 }  // namespace implicitfit
