@@ -189,7 +189,6 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::vector<double> fixed_values(E::kNumParameters, NAN);
   {
     int k = 0;
-    std::vector<double> probe(E::kNumParameters, 0.0);
     for (const ParameterField& f : ParameterFieldsOf(kind)) {
       auto it = options.fixed.find(f.name);
       if (it != options.fixed.end())

@@ -30,7 +30,9 @@ struct TreePointResidual {
   template <typename T>
   bool operator()(T const* const* blocks, T* residuals) const {
     using std::sqrt;
-    std::vector<T> flat(model->parameters().size());
+    // Reused per thread (Ceres evaluates blocks concurrently): no allocation per point.
+    thread_local std::vector<T> flat;
+    flat.resize(model->parameters().size());
     parameters->ToFlat(blocks, flat.data());
     T xt[3] = {T(x[0]), T(x[1]), T(x[2])};
     const T f = model->Evaluate(flat.data(), xt);
