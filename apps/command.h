@@ -15,5 +15,7 @@ CommandAction AddCheckCommand(CLI::App& app);
 CommandAction AddFitCommand(CLI::App& app);
 CommandAction AddSampleCommand(CLI::App& app);
 CommandAction AddBatchCommand(CLI::App& app);
+CommandAction AddMeshCommand(CLI::App& app);
+CommandAction AddReconstructCommand(CLI::App& app);
 
 }  // namespace implicitfit

@@ -1,0 +1,55 @@
+// implicitfit mesh MODEL.json --out MESH.ply [--box xmin,ymin,zmin,xmax,ymax,zmax] [--cell h]
+// A triangle mesh of the model's zero set with normals from grad f (datasets/model_mesher.h).
+#include <cmath>
+#include <iostream>
+
+#include "apps/command.h"
+#include "datasets/io_error.h"
+#include "datasets/model_file.h"
+#include "datasets/model_mesher.h"
+
+namespace implicitfit {
+
+CommandAction AddMeshCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand("mesh", "Triangle mesh of a model's zero set (binary PLY, normals from grad f)");
+  auto model_path = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto box = std::make_shared<std::vector<double>>();
+  auto cell = std::make_shared<double>(0.0);
+  cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
+  cmd->add_option("--out", *out, "Output mesh (.ply)")->required();
+  cmd->add_option("--box", *box, "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, enlarged)")
+      ->delimiter(',')->expected(6);
+  cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100)")->check(CLI::PositiveNumber);
+  return [model_path, out, box, cell]() {
+    if (out->size() < 4 || out->substr(out->size() - 4) != ".ply")
+      throw InputError(*out + ": unsupported output format (use .ply)");
+    const Model model = ReadModelFile(*model_path);
+    MeshOptions options;
+    options.cell = *cell;
+    if (box->size() == 6) {
+      options.has_box = true;
+      options.box_min = Eigen::Vector3d((*box)[0], (*box)[1], (*box)[2]);
+      options.box_max = Eigen::Vector3d((*box)[3], (*box)[4], (*box)[5]);
+      if (!options.box_min.allFinite() || !options.box_max.allFinite() ||
+          !((options.box_max - options.box_min).array() > 0).all())
+        throw InputError("--box: needs xmin < xmax, ymin < ymax, zmin < zmax (finite)");
+    }
+    MeshResult result;
+    try {
+      result = MeshModel(model, options);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(*model_path + ": " + e.what());
+    }
+    if (result.mesh.triangles.empty()) {
+      std::cerr << "implicitfit mesh: " << *model_path << ": the zero set does not cross the box\n";
+      return 1;
+    }
+    WriteMeshPlyFile(result.mesh, *out);
+    std::cout << "vertices " << result.mesh.vertices.size() << "\ntriangles " << result.mesh.triangles.size()
+              << "\ncell " << result.cell << "\nmax_abs_value " << result.max_abs_value << "\n";
+    return 0;
+  };
+}
+
+}  // namespace implicitfit
