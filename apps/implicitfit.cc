@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   actions["sample"] = AddSampleCommand(app);
   actions["batch"] = AddBatchCommand(app);
   actions["mesh"] = AddMeshCommand(app);
+  actions["reconstruct"] = AddReconstructCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -5,10 +5,14 @@
 #include <random>
 #include <stdexcept>
 
+#include "datasets/model_mesher.h"
+
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+// Grid cells along the longest side of the box for the mesh the candidates are drawn from.
+constexpr double kSamplingMeshCells = 80.0;
 
 void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
   const ModelNode& node = model.nodes()[index];
@@ -89,6 +93,34 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
   const Vec view = partial ? options.view_dir.normalized() : Vec::Zero();
   const double view_cos = std::cos(options.view_angle_deg * M_PI / 180.0);
 
+  // Candidates uniform by area: a mesh of the zero set in the box (datasets/model_mesher.h),
+  // a triangle drawn with probability proportional to its area, a uniform point in it.
+  MeshOptions mesh_options;
+  mesh_options.has_box = true;
+  mesh_options.box_min = out.box_min;
+  mesh_options.box_max = out.box_max;
+  mesh_options.cell = (out.box_max - out.box_min).maxCoeff() / kSamplingMeshCells;
+  const TriangleMesh mesh = MeshModel(model, mesh_options).mesh;
+  std::vector<double> cumulative_area;
+  cumulative_area.reserve(mesh.triangles.size());
+  double area = 0.0;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const Vec& p0 = mesh.vertices[t[0]];
+    area += 0.5 * (mesh.vertices[t[1]] - p0).cross(mesh.vertices[t[2]] - p0).norm();
+    cumulative_area.push_back(area);
+  }
+  if (!(area > 0.0))
+    throw std::runtime_error("could not sample the zero set: it does not cross the box");
+  auto uniform_on_mesh = [&]() {
+    const double r = u01(rng) * area;
+    const size_t i = std::min(cumulative_area.size() - 1,
+        static_cast<size_t>(std::upper_bound(cumulative_area.begin(), cumulative_area.end(), r) -
+                            cumulative_area.begin()));
+    const Eigen::Vector3i& t = mesh.triangles[i];
+    const double s = std::sqrt(u01(rng)), w = u01(rng);
+    return Vec((1 - s) * mesh.vertices[t[0]] + s * (1 - w) * mesh.vertices[t[1]] + s * w * mesh.vertices[t[2]]);
+  };
+
   std::vector<Vec> pts, nrm;
   long attempts = 0;
   const long max_attempts = 200L * options.count + 10000;
@@ -96,7 +128,7 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
     if (++attempts > max_attempts)
       throw std::runtime_error("could not sample the zero set: too few projections landed inside the box" +
                                std::string(partial ? " and the view cone" : ""));
-    Vec x = uniform_in_box();
+    Vec x = uniform_on_mesh();
     bool converged = false;
     for (int it = 0; it < 50; ++it) {
       double f;

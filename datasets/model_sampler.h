@@ -1,15 +1,18 @@
 // Oriented points on a model's zero set, with known truth (the `sample` command and the
-// recovery tests). Works for every model kind, blends included:
-//   1. draw x uniformly in a box around the model (SamplingBox: derived from the primitives'
-//      parameters, or given), 2. project it onto f = 0 by Newton steps
-//      x <- x - f(x) grad f(x) / |grad f(x)|^2 until |f| < 1e-12 (1 + |x|_inf) (or give up after 50),
+// recovery tests). Works for every model kind, blends included, and draws uniformly by area:
+//   1. mesh the zero set inside a box (SamplingBox: derived from the primitives' parameters, or
+//      given) with datasets/model_mesher.h (80 cells along the longest side), draw a triangle
+//      with probability proportional to its area and a uniform point in it,
+//   2. project it onto f = 0 by Newton steps
+//      x <- x - f(x) grad f(x) / |grad f(x)|^2 until |f| < 1e-12 (1 + |x|_inf) (or give up after 50);
+//      the points move by O(h^2 curvature) (h: the mesh cell), so the density stays uniform by
+//      area up to that order (the former draw, uniform in the box then projected, followed the
+//      catchment volume: on a half ball 52% of the points fell on the disk, 33% of the area),
 //   3. keep it if f is smooth there (f(x +- h n) = +-h |grad f| within 10%, h = 1e-4 of the box
 //      diagonal: this drops points that collapsed onto a cone's apex or a sharp crease), and if
 //      it stays inside the box and the optional view cone (partial views: only the
 //      points whose outward normal is within view_angle of view_dir, like a scanner sees them).
-// The normal is grad f / |grad f| (outward, DESIGN.md sign). Then noise: each point moves by
-// N(0, noise^2) along its normal (normals stay the true ones); outliers: a fraction of the
-// output is replaced by points uniform in the box with uniformly random unit normals.
+// Parts of the zero set thinner than a mesh cell may be missed.
 #pragma once
 
 #include <Eigen/Core>

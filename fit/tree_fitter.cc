@@ -82,6 +82,7 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
     for (double& v : d) v = std::abs(v);
     result.sigma = 1.4826 * Median(d);
     loss_scale = std::max(2.0 * result.sigma, 1e-12);
+    if (pass == 0) parameters.RestartCollapsedEpsilons(0.05);
   }
 
   result.model.mutable_parameters() = parameters.ToFlat();

@@ -4,7 +4,9 @@
 // construction, unit axes on SphereManifold<3>, positive radii). Residuals:
 // fit/tree_point_residual.h, one block per point with a Cauchy loss.
 // Two passes: the first with the loss scale 1% of the cloud's bounding-box diagonal, then the
-// noise scale sigma = 1.4826 median |r_0| and a second pass with the loss scale 2 sigma.
+// noise scale sigma = 1.4826 median |r_0| and a second pass with the loss scale 2 sigma. A blend
+// whose epsilon collapsed below 5% of delta in the first pass restarts the second at delta / 2
+// (fit/tree_parameters.h: RestartCollapsedEpsilons).
 #pragma once
 
 #include <Eigen/Core>

@@ -90,4 +90,15 @@ std::vector<double> TreeParameters::ToFlat() const {
   return flat;
 }
 
+int TreeParameters::RestartCollapsedEpsilons(double min_ratio) {
+  const double b_min = std::log(min_ratio / (1.0 - min_ratio));  // epsilon / delta = 1 / (1 + e^-b)
+  int restarted = 0;
+  for (const Entry& e : entries_)
+    if (e.block >= 0 && e.kind == Kind::kEpsilonLogit && blocks_[e.block][e.offset] < b_min) {
+      blocks_[e.block][e.offset] = 0.0;
+      ++restarted;
+    }
+  return restarted;
+}
+
 }  // namespace implicitfit

@@ -37,6 +37,11 @@ class TreeParameters {
   template <typename T>
   void ToFlat(T const* const* blocks, T* flat) const;
   std::vector<double> ToFlat() const;
+  // Blends whose free epsilon fell below min_ratio * delta restart at epsilon = delta / 2 (the
+  // logit b = 0): epsilon -> 0 is a plateau of the parameterisation (d epsilon / d b =
+  // epsilon (1 - epsilon / delta) -> 0) where a pass far from the solution can strand it.
+  // Returns how many restarted.
+  int RestartCollapsedEpsilons(double min_ratio);
 
  private:
   enum class Kind { kPlain, kDirection, kPositive, kAngle, kDeltaLog, kEpsilonLogit };

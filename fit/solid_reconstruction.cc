@@ -1,0 +1,319 @@
+#include "fit/solid_reconstruction.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "fit/csg_separation.h"
+#include "fit/tree_covariance.h"
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+// Copies the subtree of src at `index` into dst; returns the new node's index.
+int CopyNode(const Model& src, int index, Model* dst) {
+  const ModelNode& node = src.nodes()[index];
+  const double* p = src.parameters().data() + node.first_parameter;
+  int copied;
+  if (IsOperator(node.type)) {
+    std::vector<int> children;
+    for (int c : node.children) children.push_back(CopyNode(src, c, dst));
+    copied = dst->AddOperator(node.type, children, p[0], p[1], node.order, node.name);
+  } else if (node.type == NodeType::kBernsteinPatch) {
+    copied = dst->AddBernsteinPatch(node.degree, node.tetrahedron, std::vector<double>(p, p + node.num_parameters),
+                                    node.name);
+  } else {
+    copied = dst->AddPrimitive(node.type, std::vector<double>(p, p + node.num_parameters), node.name);
+  }
+  dst->mutable_nodes()[copied].fixed = node.fixed;
+  return copied;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Value and central-difference gradient of one node of a model.
+double NodeValue(const Model& m, int node, const Vec& x, Vec* grad, double h) {
+  const double* p = m.parameters().data();
+  for (int k = 0; k < 3; ++k) {
+    Vec a = x, b = x;
+    a[k] += h;
+    b[k] -= h;
+    (*grad)[k] = (m.EvaluateNode(node, p, a.data()) - m.EvaluateNode(node, p, b.data())) / (2 * h);
+  }
+  return m.EvaluateNode(node, p, x.data());
+}
+
+}  // namespace
+
+double ImpliedFilletRadius(double delta, double crease_angle_rad) {
+  return delta / (4.0 * (1.0 - std::cos(0.5 * crease_angle_rad)));
+}
+
+SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                                     const std::vector<DetectedPrimitive>& primitives,
+                                     const SolidReconstructionOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  SolidReconstruction out;
+  const int K = static_cast<int>(primitives.size());
+  const size_t N = points.size();
+  if (K < 1 || K > 64) {
+    out.message = "needs between 1 and 64 primitives, got " + std::to_string(K);
+    return out;
+  }
+  if (normals.size() != N || N < 10) {
+    out.message = "needs at least 10 points with normals";
+    return out;
+  }
+  Vec lo = points[0], hi = points[0];
+  for (const Vec& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diag = (hi - lo).norm();
+  const double R = options.max_fillet * diag;
+
+  // 1. Assignment.
+  std::vector<Model> prim(K);
+  std::vector<double> tau(K);
+  for (int k = 0; k < K; ++k) {
+    prim[k] = primitives[k].model;
+    tau[k] = std::max(3.0 * primitives[k].rms, 1e-3 * diag);
+  }
+  std::vector<int> label(N, -1);
+  std::vector<double> side_vote(K, 0.0);
+  out.assigned.assign(K, 0);
+  for (size_t i = 0; i < N; ++i) {
+    double best = 1.0;
+    for (int k = 0; k < K; ++k) {
+      double f;
+      const Vec g = prim[k].Gradient(points[i], &f);
+      const double gn = g.norm();
+      if (!(gn > 0) || !std::isfinite(f)) continue;
+      const double d = std::abs(f) / gn / tau[k];
+      if (d < best && std::abs(g.dot(normals[i])) >= 0.8 * gn) {
+        best = d;
+        label[i] = k;
+      }
+    }
+    if (label[i] >= 0) {
+      ++out.assigned[label[i]];
+      side_vote[label[i]] += prim[label[i]].Gradient(points[i]).dot(normals[i]) > 0 ? 1 : -1;
+    } else {
+      ++out.unassigned;
+    }
+  }
+  // 2. Orientation: planes flipped to their material side; other kinds keep f and say hole.
+  out.sides.assign(K, "unused");
+  for (int k = 0; k < K; ++k) {
+    if (out.assigned[k] == 0) continue;
+    const bool solid = side_vote[k] >= 0;
+    const ModelNode& root = prim[k].nodes()[prim[k].root()];
+    if (!solid && root.type == NodeType::kPlane && prim[k].nodes().size() == 1) {
+      for (double& v : prim[k].mutable_parameters()) v = -v;
+      out.sides[k] = "solid";
+    } else {
+      out.sides[k] = solid ? "solid" : "hole";
+    }
+  }
+
+  // 3. Inside/outside samples and the separation.
+  std::mt19937_64 rng(options.seed);
+  std::vector<size_t> assigned_points;
+  for (size_t i = 0; i < N; ++i)
+    if (label[i] >= 0) assigned_points.push_back(i);
+  std::shuffle(assigned_points.begin(), assigned_points.end(), rng);
+  if (static_cast<int>(assigned_points.size()) > options.max_samples) assigned_points.resize(options.max_samples);
+  auto signs_at = [&](const Vec& x) {
+    std::uint64_t s = 0;
+    for (int k = 0; k < K; ++k)
+      if (prim[k].Value(x) < 0) s |= 1ULL << k;
+    return s;
+  };
+  std::vector<CsgSample> samples;
+  const double t = options.offset * diag;
+  for (size_t i : assigned_points) {
+    samples.push_back({signs_at(points[i] - t * normals[i]), true});
+    samples.push_back({signs_at(points[i] + t * normals[i]), false});
+  }
+  const Vec shell_lo = lo - 0.1 * (hi - lo), shell_hi = hi + 0.1 * (hi - lo);
+  std::vector<Vec> shell;
+  const int grid = 16;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int face = 0; face < 2; ++face)
+      for (int u = 0; u <= grid; ++u)
+        for (int v = 0; v <= grid; ++v) {
+          Vec x;
+          x[axis] = face ? shell_hi[axis] : shell_lo[axis];
+          const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+          x[a1] = shell_lo[a1] + (shell_hi[a1] - shell_lo[a1]) * u / grid;
+          x[a2] = shell_lo[a2] + (shell_hi[a2] - shell_lo[a2]) * v / grid;
+          shell.push_back(x);
+        }
+  for (const Vec& x : shell) samples.push_back({signs_at(x), false});
+  const CsgSeparation sep = SeparateCells(samples, K);
+  std::vector<std::string> names;
+  for (int k = 0; k < K; ++k) names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
+  out.expression = CsgExpressionText(sep.terms, names);
+
+  // The sharp tree: union of difference(intersection(positives), negatives).
+  Model& m = out.model;
+  const double placeholder = 1e-3 * diag;
+  std::vector<int> term_nodes;
+  for (const CsgTerm& term : sep.terms) {
+    std::vector<int> pos, neg;
+    for (int k = 0; k < K; ++k) {
+      if (term.inside >> k & 1) pos.push_back(CopyNode(prim[k], prim[k].root(), &m));
+      if (term.outside >> k & 1) neg.push_back(CopyNode(prim[k], prim[k].root(), &m));
+    }
+    if (pos.empty()) continue;  // unbounded (only complements): cannot be part of a solid
+    int node = pos.size() == 1 ? pos[0] : m.AddOperator(NodeType::kIntersection, pos, placeholder, placeholder, 0);
+    if (!neg.empty()) {
+      std::vector<int> children = {node};
+      children.insert(children.end(), neg.begin(), neg.end());
+      node = m.AddOperator(NodeType::kDifference, children, placeholder, placeholder, 0);
+    }
+    term_nodes.push_back(node);
+  }
+  if (term_nodes.empty()) {
+    out.message = "the oriented cloud gives no bounded Boolean expression over the primitives (" +
+                  std::to_string(sep.inside_cells) + " inside cells)";
+    return out;
+  }
+  m.SetRoot(term_nodes.size() == 1 ? term_nodes[0]
+                                   : m.AddOperator(NodeType::kUnion, term_nodes, placeholder, placeholder, 0));
+  for (ModelNode& node : m.mutable_nodes())
+    if (IsOperator(node.type)) node.fixed = {"delta", "epsilon"};
+
+  // 4. Blends from the transition points.
+  const double h = 1e-6 * diag;
+  const double tau_all = *std::max_element(tau.begin(), tau.end());
+  std::vector<int> operators;
+  for (int i = 0; i < static_cast<int>(m.nodes().size()); ++i)
+    if (IsOperator(m.nodes()[i].type)) operators.push_back(i);
+  std::vector<std::vector<double>> deltas(m.nodes().size()), angles(m.nodes().size());
+  for (size_t i = 0; i < N; ++i) {
+    if (label[i] >= 0) continue;
+    const Vec& x = points[i];
+    if (std::abs(m.Value(x)) > R) continue;
+    for (int o : operators) {
+      const ModelNode& node = m.nodes()[o];
+      const bool is_union = node.type == NodeType::kUnion;
+      // w: children values with subtrahends negated; union works on -w (both outside).
+      double best[2] = {-1e300, -1e300};
+      Vec grad[2] = {Vec::Zero(), Vec::Zero()};
+      for (size_t c = 0; c < node.children.size(); ++c) {
+        Vec g;
+        double w = NodeValue(m, node.children[c], x, &g, h);
+        if (node.type == NodeType::kDifference && c > 0) {
+          w = -w;
+          g = -g;
+        }
+        const double key = is_union ? -w : w;  // the most active children: largest key
+        if (key > best[0]) {
+          best[1] = best[0];
+          grad[1] = grad[0];
+          best[0] = key;
+          grad[0] = g;
+        } else if (key > best[1]) {
+          best[1] = key;
+          grad[1] = g;
+        }
+      }
+      if (best[1] < -R || best[0] > tau_all) continue;
+      bool between = true;
+      for (int j = 0; j < 2; ++j) {
+        const double gn = grad[j].norm();
+        const double c = normals[i].dot(grad[j]) / gn;
+        between = between && gn > 0 && c > 0.0 && c < 0.98;
+      }
+      if (!between) continue;
+      const double d = std::pow(std::sqrt(std::max(0.0, -best[0])) + std::sqrt(std::max(0.0, -best[1])), 2);
+      if (d < 2 * tau_all || d > 4 * R) continue;
+      // The blend's normal at that position (parabolic zone): grad S_max(a, b) is proportional
+      // to (1 + (a - b) / delta) grad a + (1 - (a - b) / delta) grad b; the point's normal must
+      // be within 20 degrees of it (random normals of outliers rarely are).
+      const double mix = std::clamp((best[0] - best[1]) / d, -1.0, 1.0);
+      const Vec predicted = ((1 + mix) * grad[0].normalized() + (1 - mix) * grad[1].normalized()).normalized();
+      if (!(predicted.dot(normals[i]) > std::cos(20.0 * M_PI / 180.0))) continue;
+      deltas[o].push_back(d);
+      angles[o].push_back(std::acos(std::clamp(grad[0].normalized().dot(grad[1].normalized()), -1.0, 1.0)));
+    }
+  }
+  const int min_points = std::max(options.min_transition_points,
+                                  static_cast<int>(std::ceil(options.min_transition_fraction * N)));
+  std::vector<int> smooth;
+  for (int o : operators) {
+    if (static_cast<int>(deltas[o].size()) < min_points) continue;
+    ModelNode& node = m.mutable_nodes()[o];
+    node.order = options.blend_order;
+    node.fixed.clear();
+    const double delta0 = Median(deltas[o]);
+    m.mutable_parameters()[node.first_parameter] = delta0;
+    m.mutable_parameters()[node.first_parameter + 1] = 0.6 * delta0;
+    smooth.push_back(o);
+  }
+
+  // 5. Joint refinement on the points near the initial solid.
+  std::vector<Vec> near_points, near_normals;
+  for (size_t i = 0; i < N; ++i) {
+    const double f = m.Value(points[i]);
+    if (std::abs(f) < R) {
+      near_points.push_back(points[i]);
+      near_normals.push_back(normals[i]);
+    }
+  }
+  TreeFitResult fit = FitModelTree(m, near_points, near_normals, options.tree);
+  if (!fit.success) {
+    out.message = "tree fit failed: " + fit.message;
+    return out;
+  }
+  out.model = fit.model;
+  out.rms = fit.rms;
+  out.sigma = fit.sigma;
+  std::vector<Vec> inlier_points;
+  int agree = 0;
+  for (size_t i = 0; i < near_points.size(); ++i) {
+    double f;
+    const Vec g = out.model.Gradient(near_points[i], &f);
+    if (!(std::abs(f) / g.norm() < 3 * fit.sigma)) continue;
+    inlier_points.push_back(near_points[i]);
+    agree += g.dot(near_normals[i]) > 0;
+  }
+  out.inliers = static_cast<int>(inlier_points.size());
+  out.normal_agreement = out.inliers ? static_cast<double>(agree) / out.inliers : 0.0;
+  out.bounded = true;
+  for (const Vec& x : shell) out.bounded = out.bounded && out.model.Value(x) > 0;
+
+  const std::vector<double> sd = TreeStandardDeviations(out.model, inlier_points);
+  for (int o : smooth) {
+    const ModelNode& node = out.model.nodes()[o];
+    BlendEstimate b;
+    b.node = out.model.NodeLabel(o);
+    b.type = NodeTypeName(node.type);
+    b.transition_points = static_cast<int>(deltas[o].size());
+    b.delta = out.model.parameters()[node.first_parameter];
+    b.epsilon = out.model.parameters()[node.first_parameter + 1];
+    b.sd_delta = sd[node.first_parameter];
+    b.sd_epsilon = sd[node.first_parameter + 1];
+    const double phi = Median(angles[o]);
+    b.crease_angle_deg = phi * 180.0 / M_PI;
+    b.fillet_radius = ImpliedFilletRadius(b.delta, phi);
+    b.sd_fillet_radius = ImpliedFilletRadius(b.sd_delta, phi);
+    out.blends.push_back(b);
+  }
+  out.success = out.bounded && out.normal_agreement >= 0.5;
+  out.message = !out.bounded ? "the solid is not bounded (f <= 0 on the box around the cloud)"
+              : out.normal_agreement < 0.5 ? "grad f opposes the normals on most points"
+                                           : "ok";
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace implicitfit
