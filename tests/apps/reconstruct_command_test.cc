@@ -1,0 +1,91 @@
+// `implicitfit reconstruct` end to end: a rounded box sampled by `sample` (noise, outliers), a
+// scene file of its six face planes, then the model, mesh and report; usage errors exit 2.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/run_command.h"
+
+namespace {
+
+using nlohmann::json;
+using testsupport::FileExists;
+using testsupport::RunCommand;
+using testsupport::ScratchDir;
+using testsupport::Slurp;
+using testsupport::WriteText;
+
+const std::string kCli = IMPLICITFIT_CLI;
+
+std::string Plane(int axis, int sign, double offset) {
+  double n[3] = {0, 0, 0};
+  n[axis] = sign;
+  return R"({"type": "plane", "normal": [)" + std::to_string(n[0]) + "," + std::to_string(n[1]) + "," +
+         std::to_string(n[2]) + R"(], "offset": )" + std::to_string(offset) + "}";
+}
+
+void WriteRoundedBox(const std::string& dir, int points) {
+  const double half[3] = {1.0, 0.7, 0.5};
+  std::string faces, scene;
+  int k = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int s : {-1, 1}) {
+      faces += (k ? "," : "") + Plane(a, s, half[a]);
+      scene += std::string(k ? "," : "") + R"({"name": "p)" + std::to_string(k) + R"(", "model": )" + Plane(a, s, half[a]) +
+               R"(, "points": 100, "rms_distance": 0.004, "normal_side": "outward"})";
+      ++k;
+    }
+  WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection",
+    "delta": 0.2, "epsilon": 0.12, "order": 3, "children": [)" + faces + "]}}");
+  WriteText(dir + "/scene.json", R"({"format": "implicitfit-scene", "version": 1, "cloud": "cloud.xyz", "points": )" +
+                                     std::to_string(points) + R"(, "unassigned": 0, "primitives": [)" + scene + "]}");
+}
+
+TEST(ReconstructCommand, RoundedBoxGivesModelMeshAndReportWithTheFillet) {
+  const std::string dir = ScratchDir("reconstruct");
+  WriteRoundedBox(dir, 4000);
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 4000 --noise 0.004 --outliers 0.05 --seed 3 --out " +
+                       dir + "/cloud.xyz").exit_code, 0);
+  const auto r = RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir +
+                            "/model.json --mesh " + dir + "/mesh.ply --report " + dir + "/report.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(Slurp(dir + "/report.json"));
+  EXPECT_TRUE(report["success"].get<bool>());
+  EXPECT_TRUE(report["bounded"].get<bool>());
+  EXPECT_GE(report["normal_sign_agreement"].get<double>(), 0.99);
+  EXPECT_LE(report["rms_distance"].get<double>(), 1.5 * 0.004);
+  ASSERT_EQ(report["blends"].size(), 1u);
+  const double truth_radius = 0.2 / (4 * (1 - std::cos(M_PI / 4)));
+  EXPECT_NEAR(report["blends"][0]["fillet_radius"].get<double>(), truth_radius, 0.1 * truth_radius);
+  EXPECT_GT(report["blends"][0]["standard_deviations"]["delta"].get<double>(), 0.0);
+  const json model = json::parse(Slurp(dir + "/model.json"));
+  EXPECT_EQ(model["root"]["type"], "intersection");
+  EXPECT_EQ(model["root"]["children"].size(), 6u);
+  EXPECT_NE(Slurp(dir + "/mesh.ply").find("element face "), std::string::npos);
+}
+
+TEST(ReconstructCommand, UsageErrorsExitTwoWithoutOutput) {
+  const std::string dir = ScratchDir("reconstruct_bad");
+  WriteRoundedBox(dir, 500);
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 400 --seed 1 --out " + dir + "/cloud.xyz").exit_code, 0);
+  WriteText(dir + "/bad_scene.json", R"({"format": "implicitfit-scene", "version": 1})");
+  struct Case {
+    std::string args, message;
+  } cases[] = {
+      {dir + "/cloud.xyz --out " + dir + "/m.json", "--scene"},
+      {dir + "/missing.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "missing.xyz"},
+      {dir + "/cloud.xyz --scene " + dir + "/bad_scene.json --out " + dir + "/m.json", "bad_scene.json"},
+      {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "500 points"},
+      {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json --mesh " + dir + "/m.obj", "m.obj"},
+  };
+  for (const Case& c : cases) {
+    const auto r = RunCommand(kCli + " reconstruct " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_FALSE(FileExists(dir + "/m.json")) << c.args;
+  }
+}
+
+}  // namespace
