@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "fit/csg_separation.h"
+#include "fit/primitive_fitter.h"
 #include "fit/tree_covariance.h"
 
 namespace implicitfit {
@@ -314,6 +316,27 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
                                            : "ok";
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+std::vector<DetectedPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                                                     const std::vector<int>& labels,
+                                                     const std::vector<NodeType>& kinds, unsigned seed) {
+  std::vector<DetectedPrimitive> primitives;
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    std::vector<Vec> pts, nrm;
+    for (size_t i = 0; i < points.size(); ++i)
+      if (labels[i] == static_cast<int>(k)) {
+        pts.push_back(points[i]);
+        nrm.push_back(normals[i]);
+      }
+    PrimitiveFitOptions options;
+    options.kind = kinds[k];
+    options.seed = seed;
+    const PrimitiveFitResult fit = FitPrimitive(pts, nrm, options);
+    if (!fit.success) throw std::runtime_error("primitive " + std::to_string(k) + ": " + fit.message);
+    primitives.push_back({"p" + std::to_string(k), fit.ToModel(kinds[k]), fit.rms});
+  }
+  return primitives;
 }
 
 }  // namespace implicitfit

@@ -81,6 +81,14 @@ SolidReconstruction ReconstructSolid(const std::vector<Eigen::Vector3d>& points,
                                      const std::vector<DetectedPrimitive>& primitives,
                                      const SolidReconstructionOptions& options = {});
 
+// Primitives from labelled points (labels[i] = k: point i lies on primitive k, -1: none), each
+// fitted with the primitive fitter (fit/primitive_fitter.h) as kinds[k]: the scene that `detect`
+// would give, e.g. from ground-truth labels. Throws std::runtime_error naming a failed primitive.
+std::vector<DetectedPrimitive> FitLabelledPrimitives(const std::vector<Eigen::Vector3d>& points,
+                                                     const std::vector<Eigen::Vector3d>& normals,
+                                                     const std::vector<int>& labels,
+                                                     const std::vector<NodeType>& kinds, unsigned seed);
+
 // The fillet radius of the header for a blend of parameter delta at a crease of angle phi.
 double ImpliedFilletRadius(double delta, double crease_angle_rad);
 

@@ -12,96 +12,16 @@
 #include <cmath>
 #include <random>
 
+#include "datasets/generated_solids.h"
 #include "datasets/model_sampler.h"
 #include "fit/csg_separation.h"
-#include "fit/primitive_fitter.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
 
-struct Solid {
-  Model truth;
-  std::vector<Model> primitives;  // the distinct surfaces, as detect would find them
-  double fillet_delta = 0;        // truth blend delta (0: no fillet)
-  Vec box_min, box_max;
-};
-
-int Plane(Model* m, Vec n, double d) { return m->AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), d}); }
-
-Model One(NodeType type, const std::vector<double>& p) {
-  Model m;
-  m.SetRoot(m.AddPrimitive(type, p));
-  return m;
-}
-
-std::vector<Model> BoxPlanes(const Vec& half, double z_centre = 0) {
-  std::vector<Model> planes;
-  for (int a = 0; a < 3; ++a)
-    for (int s : {-1, 1}) {
-      Vec n = Vec::Zero();
-      n[a] = s;
-      planes.push_back(One(NodeType::kPlane, {n.x(), n.y(), n.z(), half[a] + (a == 2 ? s * z_centre : 0.0)}));
-    }
-  return planes;
-}
-
-std::vector<int> AddBox(Model* m, const Vec& half) {
-  std::vector<int> faces;
-  for (int a = 0; a < 3; ++a)
-    for (int s : {-1, 1}) {
-      Vec n = Vec::Zero();
-      n[a] = s;
-      faces.push_back(Plane(m, n, half[a]));
-    }
-  return faces;
-}
-
-Solid RoundedBox() {
-  Solid s;
-  const Vec half(1.0, 0.7, 0.5);
-  s.fillet_delta = 0.2;
-  s.truth.SetRoot(s.truth.AddOperator(NodeType::kIntersection, AddBox(&s.truth, half), 0.2, 0.12, 3));
-  s.primitives = BoxPlanes(half);
-  s.box_min = -1.1 * half;
-  s.box_max = 1.1 * half;
-  return s;
-}
-
-Solid PlateWithFilletedBore() {
-  Solid s;
-  const Vec half(1.0, 1.0, 0.25);
-  s.fillet_delta = 0.15;
-  const int plate = s.truth.AddOperator(NodeType::kIntersection, AddBox(&s.truth, half), 0.1, 0.1, 0);
-  const int bore = s.truth.AddPrimitive(NodeType::kCylinder, {0.1, 0, 0, 0, 0, 1, 0.4});
-  s.truth.SetRoot(s.truth.AddOperator(NodeType::kDifference, {plate, bore}, 0.15, 0.1, 3));
-  s.primitives = BoxPlanes(half);
-  s.primitives.push_back(One(NodeType::kCylinder, {0.1, 0, 0, 0, 0, 1, 0.4}));
-  s.box_min = -1.1 * half;
-  s.box_max = 1.1 * half;
-  return s;
-}
-
-Solid BossOnSlab() {
-  Solid s;
-  const Vec half(1.0, 1.0, 0.2);
-  s.fillet_delta = 0.15;
-  const int slab = s.truth.AddOperator(NodeType::kIntersection, AddBox(&s.truth, half), 0.1, 0.1, 0);
-  const int cyl = s.truth.AddPrimitive(NodeType::kCylinder, {0, 0.1, 0, 0, 0, 1, 0.35});
-  const int top = Plane(&s.truth, Vec(0, 0, 1), 0.8);
-  const int bottom = Plane(&s.truth, Vec(0, 0, -1), 0.2);
-  const int boss = s.truth.AddOperator(NodeType::kIntersection, {cyl, top, bottom}, 0.1, 0.1, 0);
-  s.truth.SetRoot(s.truth.AddOperator(NodeType::kUnion, {slab, boss}, 0.15, 0.1, 3));
-  s.primitives = BoxPlanes(half);
-  s.primitives.push_back(One(NodeType::kCylinder, {0, 0.1, 0, 0, 0, 1, 0.35}));
-  s.primitives.push_back(One(NodeType::kPlane, {0, 0, 1, 0.8}));
-  s.box_min = Vec(-1.1, -1.1, -0.3);
-  s.box_max = Vec(1.1, 1.1, 0.9);
-  return s;
-}
-
-void CheckReconstruction(const Solid& solid, unsigned seed) {
+void CheckReconstruction(const GeneratedSolid& solid, unsigned seed) {
   const double size = (solid.box_max - solid.box_min).maxCoeff();
   const double sigma = 0.002 * size;
   SampleOptions so;
@@ -115,26 +35,14 @@ void CheckReconstruction(const Solid& solid, unsigned seed) {
   const SampledCloud cloud = SampleModel(solid.truth, so);
 
   // Scene from ground-truth labels: the truth primitive within 4 sigma whose normal matches.
-  std::vector<DetectedPrimitive> scene;
-  for (size_t k = 0; k < solid.primitives.size(); ++k) {
-    std::vector<Vec> pts, nrm;
-    for (size_t i = 0; i < cloud.cloud.size(); ++i) {
-      if (cloud.is_outlier[i]) continue;
-      double f;
-      const Vec g = solid.primitives[k].Gradient(cloud.cloud.points[i], &f);
-      if (std::abs(f) < 4 * sigma && std::abs(g.normalized().dot(cloud.cloud.normals[i])) > 0.999) {
-        pts.push_back(cloud.cloud.points[i]);
-        nrm.push_back(cloud.cloud.normals[i]);
-      }
-    }
-    const NodeType kind = solid.primitives[k].nodes()[0].type;
-    PrimitiveFitOptions po;
-    po.kind = kind;
-    po.seed = seed;
-    const PrimitiveFitResult fit = FitPrimitive(pts, nrm, po);
-    ASSERT_TRUE(fit.success) << "primitive " << k << ": " << fit.message;
-    scene.push_back({"p" + std::to_string(k), fit.ToModel(kind), fit.rms});
-  }
+  const std::vector<int> labels = GroundTruthLabels(solid, cloud.cloud, 4 * sigma);
+  std::vector<int> inlier_labels = labels;  // the outliers' truth: they belong to no primitive
+  for (size_t i = 0; i < labels.size(); ++i)
+    if (cloud.is_outlier[i]) inlier_labels[i] = -1;
+  std::vector<NodeType> kinds;
+  for (const Model& p : solid.primitives) kinds.push_back(p.nodes()[0].type);
+  const std::vector<DetectedPrimitive> scene =
+      FitLabelledPrimitives(cloud.cloud.points, cloud.cloud.normals, inlier_labels, kinds, seed);
   SolidReconstructionOptions options;
   options.seed = seed;
   const SolidReconstruction r = ReconstructSolid(cloud.cloud.points, cloud.cloud.normals, scene, options);
@@ -193,9 +101,9 @@ void CheckReconstruction(const Solid& solid, unsigned seed) {
               truth_radius, b.transition_points);
 }
 
-TEST(SolidReconstruction, RoundedBox) { CheckReconstruction(RoundedBox(), 3); }
-TEST(SolidReconstruction, PlateWithFilletedBore) { CheckReconstruction(PlateWithFilletedBore(), 4); }
-TEST(SolidReconstruction, BossOnSlab) { CheckReconstruction(BossOnSlab(), 5); }
+TEST(SolidReconstruction, RoundedBox) { CheckReconstruction(RoundedBoxSolid(), 3); }
+TEST(SolidReconstruction, PlateWithFilletedBore) { CheckReconstruction(PlateWithFilletedBoreSolid(), 4); }
+TEST(SolidReconstruction, BossOnSlab) { CheckReconstruction(BossOnSlabSolid(), 5); }
 
 // The separation alone: a box minus a hole from labelled cells (exact Boolean algebra).
 TEST(CsgSeparation, BoxMinusHoleFromCells) {
