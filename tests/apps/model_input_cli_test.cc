@@ -87,6 +87,22 @@ TEST(ModelInput, ExactlyTheLimitIsReadAndEvaluatesToTheClosedForm) {
   EXPECT_NE(over.err.find("nests deeper than 256 levels"), std::string::npos) << over.err;
 }
 
+// Found by the model fuzzer: a number beyond the double range is an out_of_range error of
+// nlohmann's parser, not a parse_error; it must still be refused as invalid JSON naming the file.
+TEST(ModelInput, ANumberBeyondTheDoubleRangeIsInvalidJsonNamingTheFile) {
+  const std::string dir = testsupport::ScratchDir("model_overflow");
+  WriteText(dir + "/big.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": )"
+            R"({"type": "sphere", "center": [0, 0, 1e3081], "radius": 1}})");
+  WriteText(dir + "/points.xyz", "0 0 0\n");
+  const auto r = RunCommand(kCli + " eval " + dir + "/big.json " + dir + "/points.xyz");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(dir + "/big.json: invalid JSON: number overflow parsing '1e3081'"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
 // Degree-2 control points of q(x) = |x|^2 - r^2 on the tetrahedron x1..x4:
 // b_{e_i+e_j} = X_i^T G X_j with X_i = (x_i, 1), G = diag(1, 1, 1, -r^2), listed in DESIGN.md
 // order 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
