@@ -23,6 +23,7 @@
 #include "apps/fit_job.h"
 #include "datasets/atomic_file.h"
 #include "datasets/io_error.h"
+#include "fit/thread_count.h"
 
 namespace implicitfit {
 namespace {
@@ -98,7 +99,7 @@ CommandAction AddBatchCommand(CLI::App& app) {
     BatchOptions options;
     options.out_dir = a->out_dir;
     options.resume = a->resume;
-    options.jobs = a->jobs > 0 ? a->jobs : std::max(1u, std::thread::hardware_concurrency());
+    options.jobs = ThreadCountOrDefault(a->jobs);
     options.fit = fit;
     options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
 

@@ -34,7 +34,7 @@ struct FitArgs {
 CommandAction AddFitCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to an oriented point cloud");
   auto a = std::make_shared<FitArgs>();
-  cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt, x y z nx ny nz)")->required();
+  cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals estimated when absent)")->required();
   auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch");
   auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (primitive parameters, delta and epsilon, control points)");
   model_opt->excludes(init_opt);

@@ -15,8 +15,10 @@ Model ReadModelFile(const std::string& path) {
   nlohmann::json document;
   try {
     document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
     // e.what() reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    // or, for a number beyond the double range (found by the model fuzzer),
+    // "[json.exception.out_of_range.406] number overflow parsing '1e3081'".
     std::string what = e.what();
     const size_t at = what.find("] ");
     throw FileError(path, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));

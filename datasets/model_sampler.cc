@@ -37,19 +37,22 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
     case NodeType::kTorus: around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05); return;
     case NodeType::kEllipsoid: around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]})); return;
     case NodeType::kQuadric: around(Vec::Zero(), 2.0); return;
-    case NodeType::kBernsteinPatch: {  // the tetrahedron
+    case NodeType::kBernsteinPatch: {
+      // The patch is meant inside its tetrahedron (the fitters place the cloud there): its
+      // bounding box, 5% larger on every side so a zero set touching a face is kept.
       *lo = *hi = node.tetrahedron.vertex(0);
-      for (int v = 1; v < 4; ++v) {
-        *lo = lo->cwiseMin(node.tetrahedron.vertex(v));
-        *hi = hi->cwiseMax(node.tetrahedron.vertex(v));
+      for (int i = 1; i < 4; ++i) {
+        *lo = lo->cwiseMin(node.tetrahedron.vertex(i));
+        *hi = hi->cwiseMax(node.tetrahedron.vertex(i));
       }
+      const Vec margin = 0.05 * (*hi - *lo);
+      *lo -= margin;
+      *hi += margin;
       return;
     }
-    default: {
-      if (node.children.empty()) {  // a leaf kind without a rule of its own: the unit box
-        around(Vec::Zero(), 1.0);
-        return;
-      }
+    case NodeType::kUnion:
+    case NodeType::kIntersection:
+    case NodeType::kDifference: {
       NodeBox(model, node.children[0], lo, hi);
       for (size_t c = 1; c < node.children.size(); ++c) {
         Vec l, h;

@@ -44,8 +44,8 @@ struct SampledCloud {
 SampledCloud SampleModel(const Model& model, const SampleOptions& options);
 
 // A box that holds the interesting part of the model's zero set (primitives: their extent,
-// infinite ones a region around their point/apex of a few radii; operators: union of the
-// children's boxes).
+// infinite ones a region around their point/apex of a few radii; Bernstein patches: their
+// tetrahedron's bounding box grown by 5%; operators: union of the children's boxes).
 void SamplingBox(const Model& model, Eigen::Vector3d* box_min, Eigen::Vector3d* box_max);
 
 }  // namespace implicitfit

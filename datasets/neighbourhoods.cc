@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "model/median.h"
+
 namespace implicitfit {
 
 Neighbourhoods FindNeighbourhoods(const std::vector<Eigen::Vector3d>& points,
@@ -36,10 +38,7 @@ Neighbourhoods FindNeighbourhoods(const std::vector<Eigen::Vector3d>& points,
   for (size_t i = 0; i < n; ++i)
     if (squared[i].size() > static_cast<size_t>(spacing_rank)) d6.push_back(squared[i][spacing_rank]);
   Neighbourhoods out;
-  if (!d6.empty()) {
-    std::nth_element(d6.begin(), d6.begin() + d6.size() / 2, d6.end());
-    out.spacing = std::sqrt(d6[d6.size() / 2]);
-  }
+  out.spacing = std::sqrt(Median(std::move(d6)));  // 0 when no point has 6 neighbours
   out.radius = options.radius_factor * out.spacing;
   const double r2 = out.radius * out.radius;
   out.indices.resize(n);

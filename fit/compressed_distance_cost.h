@@ -31,7 +31,7 @@
 #include <cmath>
 #include <vector>
 
-#include "fit/batched_distance_cost.h"
+#include "fit/point_chunk_cost.h"
 #include "fit/primitive_jacobians.h"
 
 namespace implicitfit {
@@ -42,7 +42,7 @@ class CompressedDistanceCost final : public PointChunkCost {
   static constexpr int kP = Evaluator::kNumParameters;
   static_assert(PrimitiveDistance<Evaluator>::kAvailable, "needs closed-form derivatives");
 
-  // kP + 1 residuals for the points of `indices` (see PointChunkCost, fit/batched_distance_cost.h).
+  // kP + 1 residuals for the points of `indices` (see fit/point_chunk_cost.h).
   CompressedDistanceCost(const double* xyz, std::vector<int> indices, const std::vector<int>& block_sizes)
       : PointChunkCost(xyz, std::move(indices), block_sizes, kP + 1) {}
 

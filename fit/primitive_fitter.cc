@@ -16,6 +16,8 @@
 #include "fit/compressed_distance_cost.h"
 #include "fit/minimal_samples.h"
 #include "fit/primitive_jacobians.h"
+#include "fit/thread_count.h"
+#include "model/median.h"
 
 namespace implicitfit {
 namespace {
@@ -117,9 +119,15 @@ struct Hypothesizer {
         }
         return TorusFromSample(p, m, params);
       }
-      default:
-        return false;
+      case NodeType::kEllipsoid:
+      case NodeType::kQuadric:
+      case NodeType::kBernsteinPatch:
+      case NodeType::kUnion:
+      case NodeType::kIntersection:
+      case NodeType::kDifference:
+        return false;  // no minimal-sample hypothesis (PrimitiveFitOptions::IsValid refuses them)
     }
+    return false;
   }
 };
 
@@ -143,13 +151,6 @@ double AcosUnit(double c) {
                    1.5707963050})
     q = q * c + a;
   return std::sqrt(1.0 - c) * q;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
 }
 
 template <typename E>
@@ -276,8 +277,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   std::unique_ptr<ceres::Context> context(ceres::Context::Create());
   std::unique_ptr<ceres::Problem> problem;
   std::vector<std::vector<double>> blocks;
-  const int threads = options.num_threads > 0 ? options.num_threads
-                                               : std::max(1u, std::thread::hardware_concurrency());
+  const int threads = ThreadCountOrDefault(options.num_threads);
   bool final_stage = pool->size() == N;
   for (int round = 0; round < options.max_rounds + 3; ++round) {
     const size_t min_needed = std::max<size_t>(options.min_inliers, options.min_inlier_fraction * pool->size());
@@ -487,8 +487,15 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     case NodeType::kCylinder: return Fit<CylinderEvaluator>(points, normals, options);
     case NodeType::kCone: return Fit<ConeEvaluator>(points, normals, options);
     case NodeType::kTorus: return Fit<TorusEvaluator>(points, normals, options);
-    default: result.message = "unsupported kind"; return result;
+    case NodeType::kEllipsoid:
+    case NodeType::kQuadric:
+    case NodeType::kBernsteinPatch:
+    case NodeType::kUnion:
+    case NodeType::kIntersection:
+    case NodeType::kDifference: break;
   }
+  result.message = std::string("unsupported kind: ") + NodeTypeName(options.kind);
+  return result;
 }
 
 }  // namespace implicitfit

@@ -1,6 +1,6 @@
 // Closed-form value, parameter gradient and point gradient of the five primitive distances
-// (model/plane.h ... model/torus.h), for the fitter's hot loops: the batched residual blocks
-// (fit/batched_distance_cost.h) and the inlier classification (grad_x f against the normals).
+// (model/plane.h ... model/torus.h), for the fitter's hot loops: the compressed residual blocks
+// (fit/compressed_distance_cost.h) and the inlier classification (grad_x f against the normals).
 //
 // Maths. Notation: d = x - c (c the apex/centre/axis point), a the axis parameter (any length),
 // u = a / |a|, h = u . d (axial), radial vector w = d - h u = (u x d) x u, rho = |w| = |u x d|,
@@ -27,7 +27,8 @@
 // by the constructor, so one object serves a whole batch of points.
 //
 // API: PrimitiveDistance<Evaluator> for Plane/Sphere/Cylinder/Cone/TorusEvaluator;
-// PrimitiveDistance<E>::kAvailable is false for any other evaluator (callers fall back to Jets).
+// PrimitiveDistance<E>::kAvailable is false for any other evaluator: the primitive fitter needs
+// it (CompressedDistanceCost static_asserts it; a new fittable kind brings its closed form).
 //   PrimitiveDistance<E> f(params);           // flat layout of the evaluator
 //   double v = f(x, dp, dx);                  // dp: kNumParameters values or nullptr,
 //                                             // dx: 3 values or nullptr

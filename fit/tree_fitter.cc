@@ -5,19 +5,12 @@
 #include <cmath>
 #include <thread>
 
+#include "fit/thread_count.h"
 #include "fit/tree_parameters.h"
 #include "fit/tree_point_residual.h"
+#include "model/median.h"
 
 namespace implicitfit {
-namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector3d>& points,
                            const std::vector<Eigen::Vector3d>& normals, const TreeFitOptions& options) {
@@ -56,7 +49,7 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   };
 
   double loss_scale = 0.01 * diagonal;
-  const int threads = options.num_threads > 0 ? options.num_threads : std::max(1u, std::thread::hardware_concurrency());
+  const int threads = ThreadCountOrDefault(options.num_threads);
   ceres::Solver::Summary summary;
   for (int pass = 0; pass < 2; ++pass) {
     ceres::Problem problem;

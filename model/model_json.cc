@@ -138,7 +138,10 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
       if (largest == 0.0) Fail(path + ".coefficients", "must not all be zero");
       break;
     }
-    default:
+    case NodeType::kBernsteinPatch:
+    case NodeType::kUnion:
+    case NodeType::kIntersection:
+    case NodeType::kDifference:
       Fail(path, "internal: not a primitive");
   }
   return p;
@@ -190,7 +193,16 @@ std::set<std::string> AllowedKeys(NodeType type) {
   return keys;
 }
 
-int ReadNode(const json& node, const std::string& path, Model* model) {
+// A path of hundreds of levels, shortened for a one-line message: its start and its end.
+std::string ShortPath(const std::string& path) {
+  if (path.size() <= 120) return path;
+  return path.substr(0, 50) + "..." + path.substr(path.size() - 60);
+}
+
+int ReadNode(const json& node, const std::string& path, int depth, Model* model) {
+  if (depth > kMaxModelDepth)
+    Fail(ShortPath(path), "the model tree nests deeper than " + std::to_string(kMaxModelDepth) +
+                              " levels (the root is level 1)");
   if (!node.is_object()) Fail(path, "must be an object (a model node)");
   if (!node.contains("type") || !node.at("type").is_string())
     Fail(path + ".type", "missing or not a string");
@@ -237,7 +249,8 @@ int ReadNode(const json& node, const std::string& path, Model* model) {
     std::vector<int> children;
     const json& ch = node.at("children");
     for (size_t i = 0; i < ch.size(); ++i)
-      children.push_back(ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", model));
+      children.push_back(
+          ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", depth + 1, model));
     index = model->AddOperator(type, children, delta, epsilon, static_cast<int>(order), name);
   } else if (type == NodeType::kBernsteinPatch) {
     index = ReadBernsteinPatch(node, path, name, model);
@@ -312,7 +325,7 @@ Model ModelFromJson(const json& document) {
     Fail("version", "unsupported version " + document.at("version").dump() + " (this build reads 1)");
   if (!document.contains("root")) Fail("root", "missing");
   Model model;
-  const int root = ReadNode(document.at("root"), "root", &model);
+  const int root = ReadNode(document.at("root"), "root", 1, &model);
   model.SetRoot(root);
   return model;
 }

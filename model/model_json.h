@@ -6,6 +6,9 @@
 // "root.children[1].radius: must be > 0". Nothing is silently dropped or misread.
 // Writing emits every parameter as stored, with round-trip precision, so
 // read(write(m)) has exactly m's parameters.
+// Nesting: a tree deeper than kMaxModelDepth levels (the root is level 1) is refused, with the
+// path of the first node too deep (shortened in the middle), so that reading and every recursive
+// walk over the tree (evaluation, parameters, sampling) stay far from the stack's limit.
 // Extension (documented in the README): any node may carry "fixed": [field names], the
 // parameters a fitter keeps constant.
 #pragma once
@@ -17,6 +20,8 @@
 #include "model/model.h"
 
 namespace implicitfit {
+
+constexpr int kMaxModelDepth = 256;
 
 class ModelFormatError : public std::runtime_error {
  public:

@@ -1,5 +1,5 @@
 // Tiny 3-vector helpers on raw T* / arrays, so that evaluators stay allocation-free and work for
-// any scalar (double, Ceres Jet, Eigen AutoDiffScalar).
+// any scalar (double, Ceres Jet, Dual3 of model/dual3.h; not Eigen's AutoDiffScalar: see there).
 #pragma once
 
 #include <cmath>

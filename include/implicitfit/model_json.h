@@ -1,0 +1,9 @@
+// Public API: the model file (DESIGN.md's JSON contract, version 1), in memory
+// (ModelFromJson / ModelToJson on nlohmann::json, ModelFormatError with the JSON path) and on
+// disk (ReadModelFile / WriteModelFile: atomic writes, InputError naming the file).
+// Only include/implicitfit/*.h is public API (see implicitfit/model.h).
+#pragma once
+
+#include "datasets/io_error.h"
+#include "datasets/model_file.h"
+#include "model/model_json.h"
