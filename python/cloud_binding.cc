@@ -4,6 +4,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
 
 #include <cmath>
 #include <string>
@@ -19,11 +22,11 @@
 namespace implicitfit::python {
 namespace {
 
-py::tuple ReadCloud(const std::string& path, bool estimate) {
+py::tuple ReadCloud(const std::filesystem::path& path, bool estimate) {
   PointCloud cloud;
   {
     py::gil_scoped_release release;
-    cloud = ReadOrientedCloud(path, nullptr, estimate);
+    cloud = ReadOrientedCloud(path.string(), nullptr, estimate);
   }
   py::object normals = cloud.has_normals() ? py::object(ArrayFromPoints(std::move(cloud.normals))) : py::none();
   return py::make_tuple(ArrayFromPoints(std::move(cloud.points)), normals);

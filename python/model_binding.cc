@@ -3,6 +3,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -65,14 +68,15 @@ void BindModel(py::module_& m) {
       .def_static("from_json", &FromJson, py::arg("text"),
                   "The model of a model-file JSON text (README \"Model file\"); ValueError when "
                   "invalid, naming the offending field.")
-      .def_static("load", &ReadModelFile, py::arg("path"),
+      .def_static(
+          "load", [](const std::filesystem::path& path) { return ReadModelFile(path.string()); }, py::arg("path"),
                   "Reads a model file; OSError with the command line's message when unreadable "
                   "or invalid.")
       .def(
           "to_json", [](const Model& model, int indent) { return ModelToJson(model).dump(indent); },
           py::arg("indent") = 2, "The model-file JSON text (round-trip precision).")
       .def(
-          "save", [](const Model& model, const std::string& path) { WriteModelFile(model, path); },
+          "save", [](const Model& model, const std::filesystem::path& path) { WriteModelFile(model, path.string()); },
           py::arg("path"), "Writes the model file atomically (as `implicitfit fit --out`).")
       .def(
           "evaluate",

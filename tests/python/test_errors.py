@@ -105,7 +105,7 @@ def test_io_errors_carry_the_command_lines_messages(cli, tmp_path):
     malformed.write_text("0 0 0 0 0 1\n1 2\n")
     expected = cli_message(cli, "fit", malformed, "--model", "sphere", "--out", tmp_path / "o.json")
     with pytest.raises(OSError) as e:
-        implicitfit.read_cloud(str(malformed))
+        implicitfit.read_cloud(malformed)
     assert str(e.value) == expected and ":2:" in expected
 
     bad_model = tmp_path / "bad.json"
