@@ -1,5 +1,6 @@
 """A fit of 10^5 points: accuracy against the known truth of a sampled cylinder, and the GIL
 released while the fit runs (another Python thread keeps running)."""
+import sys
 import threading
 
 import numpy as np
@@ -50,12 +51,20 @@ def test_the_gil_is_released_during_the_fit():
         implicitfit.fit(points, normals, kind="cylinder", seed=1)
         state["in_fit"] = False
 
-    thread = threading.Thread(target=work)
-    thread.start()
-    while thread.is_alive():
-        if state["in_fit"]:
-            state["seen"] += 1  # this thread runs while the fit is inside the library
-    thread.join()
-    # Holding the GIL for the whole fit would allow at most a handful of iterations here
-    # (between setting the flag and entering the library); a released GIL allows millions.
-    assert state["seen"] > 10_000
+    # With a 1 s switch interval the interpreter does not take the GIL from the fit thread in the
+    # microseconds between setting the flag and entering the library (nor inside it, as C++ code):
+    # this thread can run during the fit only if the fit releases the GIL.
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1.0)
+    try:
+        thread = threading.Thread(target=work)
+        thread.start()
+        while thread.is_alive():
+            if state["in_fit"]:
+                state["seen"] += 1
+        thread.join()
+    finally:
+        sys.setswitchinterval(interval)
+    # Holding the GIL for the whole fit would leave 0 here (the flag is False again before this
+    # thread gets the GIL back); a released GIL lets it spin for the whole fit.
+    assert state["seen"] > 1000
