@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
     for (int r = 0; r < repeats; ++r) {
       const auto start = std::chrono::steady_clock::now();
       result = FitPrimitive(cloud.points, cloud.normals, options);
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       out["seconds"].push_back(wall);
       out["untimed"].push_back(wall - result.seconds);
     }

@@ -33,12 +33,19 @@ nlohmann::json PrimitiveFitReport(const PrimitiveFitResult& r, NodeType kind, si
 }
 
 nlohmann::json TreeFitReport(const TreeFitResult& r, size_t points, const std::string& normals) {
-  nlohmann::json report = {{"success", r.success},   {"message", r.message},   {"points", points},
-                           {"inliers", r.inliers},   {"rms_distance", r.rms},  {"sigma", r.sigma},
-                           {"mean_normal_angle_deg", r.mean_normal_angle_deg}, {"iterations", r.iterations},
-                           {"seconds", r.seconds},   {"normals", normals}};
+  nlohmann::json report = {{"success", r.success},
+                           {"message", r.message},
+                           {"points", points},
+                           {"inliers", r.inliers},
+                           {"rms_distance", r.rms},
+                           {"sigma", r.sigma},
+                           {"mean_normal_angle_deg", r.mean_normal_angle_deg},
+                           {"iterations", r.iterations},
+                           {"seconds", r.seconds},
+                           {"normals", normals}};
   const std::vector<std::string> names = r.model.ParameterNames();
-  for (size_t i = 0; i < names.size(); ++i) report["parameters"][names[i]] = r.model.parameters()[i];
+  for (size_t i = 0; i < names.size(); ++i)
+    report["parameters"][names[i]] = r.model.parameters()[i];
   return report;
 }
 

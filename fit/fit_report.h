@@ -25,7 +25,8 @@ namespace implicitfit {
 
 nlohmann::json PrimitiveFitReport(const PrimitiveFitResult& result, NodeType kind, size_t points,
                                   const std::string& normals);
-nlohmann::json TreeFitReport(const TreeFitResult& result, size_t points, const std::string& normals);
+nlohmann::json TreeFitReport(const TreeFitResult& result, size_t points,
+                             const std::string& normals);
 nlohmann::json PatchFitReport(const PatchFitResult& result, const PatchFitOptions& options,
                               size_t points, const std::string& normals);
 

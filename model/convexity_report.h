@@ -15,8 +15,8 @@
 namespace implicitfit {
 
 struct PatchConvexity {
-  int node = 0;                      // index into Model::nodes
-  std::string label;                 // Model::NodeLabel
+  int node = 0;       // index into Model::nodes
+  std::string label;  // Model::NodeLabel
   int degree = 0;
   ConvexityCertificate certificate;
 };

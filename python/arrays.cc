@@ -44,8 +44,9 @@ Points PointsFromArray(const py::handle& object, const char* what, size_t min_co
   else
     ForEachRow(rows, [&](py::ssize_t i, const Eigen::Vector3d& p) { points[i] = p; });
   // One vectorised pass over all coordinates; the row is looked for only when one is bad.
-  const auto all = Eigen::Map<const Eigen::ArrayXd>(points.empty() ? nullptr : points.front().data(),
-                                                    3 * static_cast<Eigen::Index>(points.size()));
+  const auto all =
+      Eigen::Map<const Eigen::ArrayXd>(points.empty() ? nullptr : points.front().data(),
+                                       3 * static_cast<Eigen::Index>(points.size()));
   py::ssize_t bad = -1;
   if (!all.allFinite())
     for (size_t i = 0; i < points.size() && bad < 0; ++i)
@@ -75,15 +76,16 @@ py::array_t<double> ArrayFromPoints(Points&& points) {
   py::capsule owner(owned, [](void* p) { delete static_cast<Points*>(p); });
   static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "Vector3d must be 3 packed doubles");
   const py::ssize_t n = static_cast<py::ssize_t>(owned->size());
-  return py::array_t<double>({n, py::ssize_t(3)}, {py::ssize_t(3 * sizeof(double)), py::ssize_t(sizeof(double))},
+  return py::array_t<double>({n, py::ssize_t(3)},
+                             {py::ssize_t(3 * sizeof(double)), py::ssize_t(sizeof(double))},
                              owned->empty() ? nullptr : owned->front().data(), owner);
 }
 
 py::array_t<double> ArrayFromValues(std::vector<double>&& values) {
   auto* owned = new std::vector<double>(std::move(values));
   py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
-  return py::array_t<double>({static_cast<py::ssize_t>(owned->size())}, {py::ssize_t(sizeof(double))},
-                             owned->data(), owner);
+  return py::array_t<double>({static_cast<py::ssize_t>(owned->size())},
+                             {py::ssize_t(sizeof(double))}, owned->data(), owner);
 }
 
 }  // namespace implicitfit::python

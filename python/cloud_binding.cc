@@ -6,9 +6,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <filesystem>
-
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "datasets/model_sampler.h"
@@ -28,15 +27,16 @@ py::tuple ReadCloud(const std::filesystem::path& path, bool estimate) {
     py::gil_scoped_release release;
     cloud = ReadOrientedCloud(path.string(), nullptr, estimate);
   }
-  py::object normals = cloud.has_normals() ? py::object(ArrayFromPoints(std::move(cloud.normals))) : py::none();
+  py::object normals =
+      cloud.has_normals() ? py::object(ArrayFromPoints(std::move(cloud.normals))) : py::none();
   return py::make_tuple(ArrayFromPoints(std::move(cloud.points)), normals);
 }
 
-py::array_t<double> EstimateNormals(const py::handle& points, const py::handle& viewpoint, int min_k,
-                                    int max_k) {
+py::array_t<double> EstimateNormals(const py::handle& points, const py::handle& viewpoint,
+                                    int min_k, int max_k) {
   if (min_k < 3 || max_k < min_k)
-    throw py::value_error("min_k, max_k: need 3 <= min_k <= max_k, got " + std::to_string(min_k) + ", " +
-                          std::to_string(max_k));
+    throw py::value_error("min_k, max_k: need 3 <= min_k <= max_k, got " + std::to_string(min_k) +
+                          ", " + std::to_string(max_k));
   PointCloud cloud;
   cloud.points = PointsFromArray(points, "points", 3);
   NormalOptions options;
@@ -61,9 +61,11 @@ py::tuple Sample(const Model& model, long long count, double noise, double outli
   SampleOptions options;
   if (count < 1 || count > 1000000000LL) throw py::value_error("count: must be in [1, 1e9]");
   if (!(noise >= 0.0) || !std::isfinite(noise)) throw py::value_error("noise: must be >= 0");
-  if (!(outliers >= 0.0 && outliers <= 0.99)) throw py::value_error("outliers: must be in [0, 0.99]");
+  if (!(outliers >= 0.0 && outliers <= 0.99))
+    throw py::value_error("outliers: must be in [0, 0.99]");
   if (seed < 0 || seed > 0xffffffffLL) throw py::value_error("seed: must be in [0, 2^32 - 1]");
-  if (!(view_angle >= 0.0 && view_angle <= 180.0)) throw py::value_error("view_angle: must be in [0, 180]");
+  if (!(view_angle >= 0.0 && view_angle <= 180.0))
+    throw py::value_error("view_angle: must be in [0, 180]");
   options.count = static_cast<int>(count);
   options.noise = noise;
   options.outlier_fraction = outliers;
@@ -102,7 +104,8 @@ void BindClouds(py::module_& m) {
         "noise: sigma along the normal; outliers: fraction replaced by uniform points;\n"
         "view, view_angle: a partial view (normals within view_angle degrees of view).");
   m.def(
-      "check", [](const Model& model) { return ToPython(ModelConvexityJson(model)); }, py::arg("model"),
+      "check", [](const Model& model) { return ToPython(ModelConvexityJson(model)); },
+      py::arg("model"),
       "Convexity certificate of every Bernstein patch, as one file's entry of `implicitfit check\n"
       "--json`: {\"convex\": bool, \"patches\": [{\"degree\", \"convex\", \"min_eigenvalue\"}]}.");
 }

@@ -75,7 +75,8 @@ py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degr
   }
   std::string error;
   if (!options.IsValid(&error)) throw py::value_error(error);
-  FitInput in = ReadFitInput(points, normals, static_cast<size_t>(NumBernsteinControlPoints(options.degree)));
+  FitInput in =
+      ReadFitInput(points, normals, static_cast<size_t>(NumBernsteinControlPoints(options.degree)));
   PatchFitResult result;
   {
     py::gil_scoped_release release;
@@ -83,17 +84,19 @@ py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degr
     result = FitBernsteinPatch(in.cloud.points, in.cloud.normals, options);
   }
   py::object model = result.success ? py::cast(result.ToModel()) : py::none();
-  return py::make_tuple(model, ToPython(PatchFitReport(result, options, in.cloud.size(), in.action)));
+  return py::make_tuple(model,
+                        ToPython(PatchFitReport(result, options, in.cloud.size(), in.action)));
 }
 
-py::tuple Fit(const py::handle& points, const py::handle& normals, const std::string& kind, long long seed,
-              std::optional<double> threshold, std::optional<py::dict> fix) {
+py::tuple Fit(const py::handle& points, const py::handle& normals, const std::string& kind,
+              long long seed, std::optional<double> threshold, std::optional<py::dict> fix) {
   if (kind == "quadric-patch" || kind == "cubic-patch")
     return PatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))
-    throw py::value_error("kind " + kind +
-                          ": unknown (plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch)");
+    throw py::value_error(
+        "kind " + kind +
+        ": unknown (plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch)");
   options.seed = SeedFrom(seed);
   if (threshold) {
     if (!(*threshold > 0.0) || !std::isfinite(*threshold))
@@ -120,7 +123,8 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
     result = FitPrimitive(in.cloud.points, in.cloud.normals, options);
   }
   py::object model = result.success ? py::cast(result.ToModel(options.kind)) : py::none();
-  return py::make_tuple(model, ToPython(PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action)));
+  return py::make_tuple(
+      model, ToPython(PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action)));
 }
 
 py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Model& init) {
@@ -138,17 +142,19 @@ py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Mod
 }  // namespace
 
 void BindFits(py::module_& m) {
-  m.def("fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
-        py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
-        "Robust fit of one primitive (plane, sphere, cylinder, cone, torus; quadric-patch and\n"
-        "cubic-patch go to fit_patch), as `implicitfit fit CLOUD --model KIND`.\n"
-        "points, normals: (N, 3) arrays (normals None: estimated and oriented as the command\n"
-        "line does). threshold: initial inlier band (None: 1% of the bounding-box diagonal).\n"
-        "fix: {field: value}, e.g. {\"radius\": 2, \"axis\": [0, 0, 1]}.\n"
-        "Returns (Model, report); Model is None when the fit fails (report[\"message\"] says why).");
+  m.def(
+      "fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
+      py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
+      "Robust fit of one primitive (plane, sphere, cylinder, cone, torus; quadric-patch and\n"
+      "cubic-patch go to fit_patch), as `implicitfit fit CLOUD --model KIND`.\n"
+      "points, normals: (N, 3) arrays (normals None: estimated and oriented as the command\n"
+      "line does). threshold: initial inlier band (None: 1% of the bounding-box diagonal).\n"
+      "fix: {field: value}, e.g. {\"radius\": 2, \"axis\": [0, 0, 1]}.\n"
+      "Returns (Model, report); Model is None when the fit fails (report[\"message\"] says why).");
   m.def("fit_tree", &TreeFit, py::arg("points"), py::arg("normals"), py::arg("init"),
         "Fits every free parameter of a model tree (primitive parameters, delta and epsilon of\n"
-        "blends, control points), as `implicitfit fit CLOUD --init MODEL.json`. Returns (Model, report).");
+        "blends, control points), as `implicitfit fit CLOUD --init MODEL.json`. Returns (Model, "
+        "report).");
   m.def("fit_patch", &PatchFit, py::arg("points"), py::arg("normals"), py::arg("degree") = 2,
         py::arg("convex") = false, py::arg("tetrahedron") = py::none(),
         "Fits a Bernstein patch of degree 2..4 (convex=True: enforced and certified convex), as\n"

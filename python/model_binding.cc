@@ -6,7 +6,6 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -26,7 +25,8 @@ Model FromJson(const std::string& text) {
   } catch (const nlohmann::json::parse_error& e) {
     std::string what = e.what();
     const size_t at = what.find("] ");
-    throw py::value_error("invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+    throw py::value_error("invalid JSON: " +
+                          (at == std::string::npos ? what : what.substr(at + 2)));
   }
   return ModelFromJson(document);
 }
@@ -38,8 +38,10 @@ py::dict Parameters(const Model& model) {
   for (size_t n = 0; n < model.nodes().size(); ++n) {
     const ModelNode& node = model.nodes()[n];
     std::string label = model.NodeLabel(static_cast<int>(n));
-    if (label == "root") label.clear();
-    else if (label.rfind("root.", 0) == 0) label = label.substr(5);
+    if (label == "root")
+      label.clear();
+    else if (label.rfind("root.", 0) == 0)
+      label = label.substr(5);
     const double* p = model.parameters().data() + node.first_parameter;
     for (const ParameterField& field : ParameterFieldsOf(node)) {
       const std::string key = label.empty() ? field.name : label + "." + field.name;
@@ -69,14 +71,18 @@ void BindModel(py::module_& m) {
                   "The model of a model-file JSON text (README \"Model file\"); ValueError when "
                   "invalid, naming the offending field.")
       .def_static(
-          "load", [](const std::filesystem::path& path) { return ReadModelFile(path.string()); }, py::arg("path"),
-                  "Reads a model file; OSError with the command line's message when unreadable "
-                  "or invalid.")
+          "load", [](const std::filesystem::path& path) { return ReadModelFile(path.string()); },
+          py::arg("path"),
+          "Reads a model file; OSError with the command line's message when unreadable "
+          "or invalid.")
       .def(
           "to_json", [](const Model& model, int indent) { return ModelToJson(model).dump(indent); },
           py::arg("indent") = 2, "The model-file JSON text (round-trip precision).")
       .def(
-          "save", [](const Model& model, const std::filesystem::path& path) { WriteModelFile(model, path.string()); },
+          "save",
+          [](const Model& model, const std::filesystem::path& path) {
+            WriteModelFile(model, path.string());
+          },
           py::arg("path"), "Writes the model file atomically (as `implicitfit fit --out`).")
       .def(
           "evaluate",
@@ -86,11 +92,13 @@ void BindModel(py::module_& m) {
             double* out = f.mutable_data();
             {
               py::gil_scoped_release release;
-              ForEachRow(rows, [&](py::ssize_t i, const Eigen::Vector3d& x) { out[i] = model.Value(x); });
+              ForEachRow(rows,
+                         [&](py::ssize_t i, const Eigen::Vector3d& x) { out[i] = model.Value(x); });
             }
             return f;
           },
-          py::arg("points"), "f at each row of an (N, 3) array: an (N,) array (signed distance for primitives).")
+          py::arg("points"),
+          "f at each row of an (N, 3) array: an (N,) array (signed distance for primitives).")
       .def(
           "gradient",
           [](const Model& model, const py::handle& points) {
@@ -106,10 +114,14 @@ void BindModel(py::module_& m) {
             return g;
           },
           py::arg("points"), "grad f at each row of an (N, 3) array: an (N, 3) array.")
-      .def_property_readonly("parameters", &Parameters,
-                             "The parameters by field: {\"axis\": array([...]), \"radius\": r, ...}.")
       .def_property_readonly(
-          "kind", [](const Model& model) { return std::string(NodeTypeName(model.nodes()[model.root()].type)); },
+          "parameters", &Parameters,
+          "The parameters by field: {\"axis\": array([...]), \"radius\": r, ...}.")
+      .def_property_readonly(
+          "kind",
+          [](const Model& model) {
+            return std::string(NodeTypeName(model.nodes()[model.root()].type));
+          },
           "The root node's type: \"sphere\", \"union\", \"bernstein_patch\", ...")
       .def("__repr__", &Repr);
 }
