@@ -105,12 +105,18 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
   }
   if (fix) {
     for (const auto& [field, value] : *fix) {
+      const std::string name = py::str(field);
       std::vector<double> values;
-      if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
-        values.push_back(value.cast<double>());
-      else
-        values = value.cast<std::vector<double>>();
-      options.fixed[field.cast<std::string>()] = values;
+      try {
+        if (py::isinstance<py::str>(value)) throw py::cast_error();
+        if (PySequence_Check(value.ptr()))
+          values = value.cast<std::vector<double>>();
+        else
+          values.push_back(value.cast<double>());  // float, int, NumPy scalars
+      } catch (const py::cast_error&) {
+        throw py::value_error("fix[" + name + "]: expected a number or a sequence of numbers");
+      }
+      options.fixed[name] = values;
     }
   }
   std::string error;

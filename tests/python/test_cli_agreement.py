@@ -52,7 +52,7 @@ def test_options_reach_the_fitter_as_on_the_command_line(cli, tmp_path, noisy_cy
     expected = cli_fit(cli, tmp_path, noisy_cylinder, "--model", "cylinder", "--seed", "5",
                        "--threshold", "0.05", "--fix", "radius=0.6")
     points, normals = implicitfit.read_cloud(str(noisy_cylinder))
-    result = implicitfit.fit(points, normals, kind="cylinder", seed=5, threshold=0.05, fix={"radius": 0.6})
+    result = implicitfit.fit(points, normals, kind="cylinder", seed=5, threshold=0.05, fix={"radius": np.float64(0.6)})
     assert_same_fit(expected, result)
     assert result[0].parameters["radius"] == 0.6
 

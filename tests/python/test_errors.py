@@ -63,6 +63,8 @@ def test_invalid_options(cloud):
         implicitfit.fit(points, normals, threshold=-1)
     with pytest.raises(ValueError, match="seed"):
         implicitfit.fit(points, normals, seed=-1)
+    with pytest.raises(ValueError, match=r"fix\[radius\]: expected a number"):
+        implicitfit.fit(points, normals, kind="sphere", fix={"radius": "big"})
     with pytest.raises(ValueError, match="colour"):
         implicitfit.fit(points, normals, kind="sphere", fix={"colour": 1})
     with pytest.raises(ValueError):
