@@ -52,7 +52,8 @@ def test_options_reach_the_fitter_as_on_the_command_line(cli, tmp_path, noisy_cy
     expected = cli_fit(cli, tmp_path, noisy_cylinder, "--model", "cylinder", "--seed", "5",
                        "--threshold", "0.05", "--fix", "radius=0.6")
     points, normals = implicitfit.read_cloud(str(noisy_cylinder))
-    result = implicitfit.fit(points, normals, kind="cylinder", seed=5, threshold=0.05, fix={"radius": np.float64(0.6)})
+    result = implicitfit.fit(points, normals, kind="cylinder", seed=5, threshold=0.05,
+                             fix={"radius": np.float64(0.6)})
     assert_same_fit(expected, result)
     assert result[0].parameters["radius"] == 0.6
 
@@ -92,7 +93,8 @@ def test_patch_and_tree_fits(cli, tmp_path, noisy_cylinder, data_dir):
     expected = cli_fit(cli, tmp_path, cloud, "--model", "cubic-patch")
     assert_same_fit(expected, implicitfit.fit(points, normals, kind="cubic-patch"))
 
-    init = write_model(tmp_path / "init.json", {"type": "sphere", "center": [0.5, -0.2, -0.7], "radius": 0.3})
+    init = write_model(tmp_path / "init.json",
+                       {"type": "sphere", "center": [0.5, -0.2, -0.7], "radius": 0.3})
     expected = cli_fit(cli, tmp_path, cloud, "--init", init)
     assert_same_fit(expected, implicitfit.fit_tree(points, normals, implicitfit.Model.load(str(init))))
 
@@ -104,7 +106,8 @@ def test_sample_matches_the_command_line(cli, tmp_path):
                        "--seed", "9", "--out", tmp_path / "cli.xyz")
     assert code == 0, err
     text = np.loadtxt(tmp_path / "cli.xyz")
-    points, normals = implicitfit.sample(implicitfit.Model.load(str(truth)), 2000, noise=0.01, outliers=0.1, seed=9)
+    points, normals = implicitfit.sample(implicitfit.Model.load(str(truth)), 2000, noise=0.01,
+                                         outliers=0.1, seed=9)
     np.testing.assert_array_equal(points, text[:, :3])   # written with %.17g: exact
     np.testing.assert_array_equal(normals, text[:, 3:])
 

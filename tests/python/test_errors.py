@@ -1,12 +1,15 @@
 """Bad input: ValueError for wrong shapes, NaN, too few points and invalid options; OSError with
 exactly the command line's message (after its "implicitfit <command>: " prefix) for files."""
+import re
+
 import numpy as np
 import pytest
 
 import implicitfit
 from conftest import run
 
-SPHERE = '{"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}}'
+SPHERE = ('{"format": "implicitfit-model", "version": 1, '
+          '"root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}}')
 
 
 @pytest.fixture(scope="module")
@@ -17,7 +20,8 @@ def cloud():
 @pytest.mark.parametrize("bad, shape", [(np.zeros((10, 2)), "(10, 2)"), (np.zeros(3), "(3,)"),
                                         (np.zeros((4, 3, 1)), "(4, 3, 1)")])
 def test_wrong_shapes(bad, shape):
-    with pytest.raises(ValueError, match=r"points: expected an \(N, 3\) array, got shape " + shape.replace("(", r"\(").replace(")", r"\)")):
+    message = r"points: expected an \(N, 3\) array, got shape " + re.escape(shape)
+    with pytest.raises(ValueError, match=message):
         implicitfit.fit(bad)
     with pytest.raises(ValueError, match="expected an"):
         implicitfit.Model.from_json(SPHERE).evaluate(bad)

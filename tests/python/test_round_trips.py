@@ -74,7 +74,8 @@ def test_gradient_of_a_blend_against_central_differences():
     m = implicitfit.Model.from_json(model_text(BLEND))
     x = np.random.default_rng(2).uniform(-1.5, 2.5, size=(200, 3))
     h = 1e-6
-    numeric = np.stack([(m.evaluate(x + h * e) - m.evaluate(x - h * e)) / (2 * h) for e in np.eye(3)], axis=1)
+    numeric = np.stack([(m.evaluate(x + h * e) - m.evaluate(x - h * e)) / (2 * h) for e in np.eye(3)],
+                       axis=1)
     np.testing.assert_allclose(m.gradient(x), numeric, rtol=0, atol=1e-6)
 
 
@@ -86,7 +87,8 @@ def test_float32_and_strided_inputs_are_converted_exactly():
     strided = wide[:, ::2]  # not C-contiguous
     assert not strided.flags.c_contiguous
     np.testing.assert_array_equal(m.evaluate(strided), m.evaluate(np.ascontiguousarray(strided)))
-    np.testing.assert_array_equal(m.evaluate(strided.tolist()), m.evaluate(np.ascontiguousarray(strided)))
+    np.testing.assert_array_equal(m.evaluate(strided.tolist()),
+                                  m.evaluate(np.ascontiguousarray(strided)))
 
 
 def test_read_cloud_matches_the_text_file(data_dir):
@@ -150,5 +152,7 @@ def test_check_against_hand_derived_guo_matrices():
         "convex": True, "patches": [{"degree": 2, "convex": True, "min_eigenvalue": 1.0}]}
     # b(2e_1) = 1 only: A = diag(1, 0, 0), smallest eigenvalue 0: not certified.
     flat = implicitfit.check(implicitfit.Model.from_json(degree2_patch([1, 0, 0, 0, 0, 0, 0, 0, 0, 0])))
-    assert flat["convex"] is False and flat["patches"][0]["min_eigenvalue"] == pytest.approx(0.0, abs=1e-15)
-    assert implicitfit.check(implicitfit.Model.from_json(model_text(CYLINDER))) == {"convex": True, "patches": []}
+    assert flat["convex"] is False
+    assert flat["patches"][0]["min_eigenvalue"] == pytest.approx(0.0, abs=1e-15)
+    no_patch = implicitfit.Model.from_json(model_text(CYLINDER))
+    assert implicitfit.check(no_patch) == {"convex": True, "patches": []}
