@@ -13,7 +13,7 @@
 
 #include "apps/command.h"
 #include "datasets/model_file.h"
-#include "model/convexity_certificate.h"
+#include "model/convexity_report.h"
 #include "model/tangent_plane_test.h"
 
 namespace implicitfit {
@@ -48,14 +48,13 @@ int Run(const CheckOptions& options) {
   std::vector<std::vector<PatchReport>> reports(models.size());
   for (size_t f = 0; f < models.size(); ++f) {
     const Model& model = models[f];
-    for (size_t n = 0; n < model.nodes().size(); ++n) {
-      const ModelNode& node = model.nodes()[n];
-      if (node.type != NodeType::kBernsteinPatch) continue;
+    for (const PatchConvexity& patch : CertifyModelPatches(model)) {
+      const ModelNode& node = model.nodes()[patch.node];
       PatchReport r;
-      r.label = model.NodeLabel(static_cast<int>(n));
-      r.degree = node.degree;
+      r.label = patch.label;
+      r.degree = patch.degree;
       const double* b = model.parameters().data() + node.first_parameter;
-      r.certificate = CertifyConvexity(node.degree, b);
+      r.certificate = patch.certificate;
       all_convex &= r.certificate.convex;
       if (options.sample > 0) {
         TangentPlaneTestOptions sample_options;
@@ -91,10 +90,7 @@ int Run(const CheckOptions& options) {
       ojson patches = ojson::array();
       for (const PatchReport& r : reports[f]) {
         convex &= r.certificate.convex;
-        ojson p;
-        p["degree"] = r.degree;
-        p["convex"] = r.certificate.convex;
-        p["min_eigenvalue"] = r.certificate.min_eigenvalue;
+        ojson p = PatchConvexityJson(r.degree, r.certificate);
         if (options.sample > 0)
           p["sample"] = {{"zero_points", r.sample.zero_points},
                          {"violations", r.sample.violations},

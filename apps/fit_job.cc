@@ -4,37 +4,10 @@
 
 #include "datasets/oriented_cloud.h"
 #include "datasets/io_error.h"
-#include "model/model.h"
+#include "fit/fit_report.h"
 
 namespace implicitfit {
 namespace {
-
-nlohmann::json Report(const PrimitiveFitResult& r, NodeType kind, size_t points, const std::string& normals) {
-  nlohmann::json j;
-  j["success"] = r.success;
-  j["message"] = r.message;
-  j["points"] = points;
-  j["inliers"] = r.inliers.size();
-  j["rms_distance"] = r.rms;
-  j["max_distance"] = r.max_abs;
-  j["sigma"] = r.sigma;
-  j["mean_normal_angle_deg"] = r.mean_normal_angle_deg;
-  j["iterations"] = r.iterations;
-  j["rounds"] = r.rounds;
-  j["seconds"] = r.seconds;
-  j["normals"] = normals;
-  if (!r.parameters.empty()) {
-    Model m;
-    m.AddPrimitive(kind, r.parameters);
-    const std::vector<std::string> names = m.ParameterNames();
-    for (size_t i = 0; i < names.size(); ++i) {
-      const std::string name = names[i].substr(names[i].find('.') + 1);
-      j["parameters"][name] = r.parameters[i];
-      if (!r.standard_deviations.empty()) j["standard_deviations"][name] = r.standard_deviations[i];
-    }
-  }
-  return j;
-}
 
 // "radius=2" or "axis=0,0,1" -> {"radius", {2}}.
 std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& text) {
@@ -63,7 +36,7 @@ CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& option
   CloudFit fit;
   fit.points = cloud.size();
   fit.result = FitPrimitive(cloud.points, cloud.normals, options);
-  fit.report = Report(fit.result, options.kind, cloud.size(), normals);
+  fit.report = PrimitiveFitReport(fit.result, options.kind, cloud.size(), normals);
   return fit;
 }
 

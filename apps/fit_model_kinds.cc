@@ -8,6 +8,7 @@
 #include "datasets/io_error.h"
 #include "datasets/model_file.h"
 #include "datasets/oriented_cloud.h"
+#include "fit/fit_report.h"
 #include "fit/patch_fitter.h"
 #include "fit/tree_fitter.h"
 #include "model/model_json.h"
@@ -30,12 +31,7 @@ int RunTreeFit(const ModelFitRequest& request) {
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, TreeFitOptions{});
-  nlohmann::json report = {{"success", r.success},   {"message", r.message},   {"points", cloud.size()},
-                           {"inliers", r.inliers},   {"rms_distance", r.rms},  {"sigma", r.sigma},
-                           {"mean_normal_angle_deg", r.mean_normal_angle_deg}, {"iterations", r.iterations},
-                           {"seconds", r.seconds},   {"normals", normals}};
-  const std::vector<std::string> names = r.model.ParameterNames();
-  for (size_t i = 0; i < names.size(); ++i) report["parameters"][names[i]] = r.model.parameters()[i];
+  const nlohmann::json report = TreeFitReport(r, cloud.size(), normals);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
     std::cerr << "implicitfit fit: " << request.cloud << ": model tree fit failed: " << r.message << "\n";
@@ -65,18 +61,7 @@ int RunPatchFit(const ModelFitRequest& request) {
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const PatchFitResult r = FitBernsteinPatch(cloud.points, cloud.normals, options);
-  nlohmann::json report = {{"success", r.success},
-                           {"message", r.message},
-                           {"points", cloud.size()},
-                           {"degree", options.degree},
-                           {"rms_distance", r.rms},
-                           {"mean_normal_angle_deg", r.mean_normal_angle_deg},
-                           {"convex_constraint", options.convex},
-                           {"certified_convex", r.certified_convex},
-                           {"min_eigenvalue", r.min_eigenvalue},
-                           {"seconds", r.seconds},
-                           {"normals", normals}};
-  if (options.convex) report["unconstrained_rms_distance"] = r.unconstrained_rms;
+  const nlohmann::json report = PatchFitReport(r, options, cloud.size(), normals);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
     std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << r.message << "\n";

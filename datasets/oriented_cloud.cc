@@ -7,9 +7,14 @@
 
 namespace implicitfit {
 
-PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action) {
+PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action,
+                             bool estimate_missing) {
   CloudFileInfo info;
   PointCloud cloud = ReadCloudFile(path, &info);
+  if (!estimate_missing && !cloud.has_normals()) {
+    if (normals_action) *normals_action = "none in the file";
+    return cloud;
+  }
   NormalOptions options;
   options.viewpoint = info.viewpoint;
   try {

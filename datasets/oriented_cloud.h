@@ -5,6 +5,7 @@
 // Throws InputError naming the file when it cannot be read. A cloud too small to estimate
 // normals is returned without them (`normals_action` says so): degenerate data, left to the
 // fit to refuse with exit 1.
+// estimate_missing false: a file without normals is returned without them ("none in the file").
 #pragma once
 
 #include <string>
@@ -13,6 +14,7 @@
 
 namespace implicitfit {
 
-PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action);
+PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action,
+                             bool estimate_missing = true);
 
 }  // namespace implicitfit

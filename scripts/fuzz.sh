@@ -12,7 +12,7 @@ budget=(-max_total_time="$seconds")
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -g -O1"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
   -DCMAKE_CXX_COMPILER=clang++ "-DCMAKE_CXX_FLAGS=$flags" -DIMPLICITFIT_BUILD_FUZZERS=ON \
-  -DIMPLICITFIT_BUILD_BENCHMARKS=OFF >/dev/null
+  -DIMPLICITFIT_BUILD_BENCHMARKS=OFF -DIMPLICITFIT_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-fuzz -j "$(nproc)" --target ply_reader_fuzzer pcd_reader_fuzzer xyz_reader_fuzzer \
   model_json_fuzzer
 for format in ply pcd xyz; do

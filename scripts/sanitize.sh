@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPLICITFIT_BUILD_BENCHMARKS=OFF \
+# No Python module: an ASan-built extension cannot load into the uninstrumented interpreter.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPLICITFIT_BUILD_BENCHMARKS=OFF -DIMPLICITFIT_BUILD_PYTHON=OFF \
   "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_EXE_LINKER_FLAGS=$flags" >/dev/null
 export ASAN_OPTIONS=detect_leaks=1
 if [ $# -eq 0 ]; then

@@ -1,0 +1,69 @@
+#include "fit/fit_report.h"
+
+#include <vector>
+
+namespace implicitfit {
+
+nlohmann::json PrimitiveFitReport(const PrimitiveFitResult& r, NodeType kind, size_t points,
+                                  const std::string& normals) {
+  nlohmann::json j;
+  j["success"] = r.success;
+  j["message"] = r.message;
+  j["points"] = points;
+  j["inliers"] = r.inliers.size();
+  j["rms_distance"] = r.rms;
+  j["max_distance"] = r.max_abs;
+  j["sigma"] = r.sigma;
+  j["mean_normal_angle_deg"] = r.mean_normal_angle_deg;
+  j["iterations"] = r.iterations;
+  j["rounds"] = r.rounds;
+  j["seconds"] = r.seconds;
+  j["normals"] = normals;
+  if (!r.parameters.empty()) {
+    Model m;
+    m.AddPrimitive(kind, r.parameters);
+    const std::vector<std::string> names = m.ParameterNames();
+    for (size_t i = 0; i < names.size(); ++i) {
+      const std::string name = names[i].substr(names[i].find('.') + 1);
+      j["parameters"][name] = r.parameters[i];
+      if (!r.standard_deviations.empty()) j["standard_deviations"][name] = r.standard_deviations[i];
+    }
+  }
+  return j;
+}
+
+nlohmann::json TreeFitReport(const TreeFitResult& r, size_t points, const std::string& normals) {
+  nlohmann::json report = {{"success", r.success},
+                           {"message", r.message},
+                           {"points", points},
+                           {"inliers", r.inliers},
+                           {"rms_distance", r.rms},
+                           {"sigma", r.sigma},
+                           {"mean_normal_angle_deg", r.mean_normal_angle_deg},
+                           {"iterations", r.iterations},
+                           {"seconds", r.seconds},
+                           {"normals", normals}};
+  const std::vector<std::string> names = r.model.ParameterNames();
+  for (size_t i = 0; i < names.size(); ++i)
+    report["parameters"][names[i]] = r.model.parameters()[i];
+  return report;
+}
+
+nlohmann::json PatchFitReport(const PatchFitResult& r, const PatchFitOptions& options,
+                              size_t points, const std::string& normals) {
+  nlohmann::json report = {{"success", r.success},
+                           {"message", r.message},
+                           {"points", points},
+                           {"degree", options.degree},
+                           {"rms_distance", r.rms},
+                           {"mean_normal_angle_deg", r.mean_normal_angle_deg},
+                           {"convex_constraint", options.convex},
+                           {"certified_convex", r.certified_convex},
+                           {"min_eigenvalue", r.min_eigenvalue},
+                           {"seconds", r.seconds},
+                           {"normals", normals}};
+  if (options.convex) report["unconstrained_rms_distance"] = r.unconstrained_rms;
+  return report;
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,41 @@
+#include "model/convexity_report.h"
+
+namespace implicitfit {
+
+std::vector<PatchConvexity> CertifyModelPatches(const Model& model) {
+  std::vector<PatchConvexity> patches;
+  for (size_t n = 0; n < model.nodes().size(); ++n) {
+    const ModelNode& node = model.nodes()[n];
+    if (node.type != NodeType::kBernsteinPatch) continue;
+    PatchConvexity p;
+    p.node = static_cast<int>(n);
+    p.label = model.NodeLabel(p.node);
+    p.degree = node.degree;
+    p.certificate = CertifyConvexity(node.degree, model.parameters().data() + node.first_parameter);
+    patches.push_back(p);
+  }
+  return patches;
+}
+
+nlohmann::ordered_json PatchConvexityJson(int degree, const ConvexityCertificate& certificate) {
+  nlohmann::ordered_json p;
+  p["degree"] = degree;
+  p["convex"] = certificate.convex;
+  p["min_eigenvalue"] = certificate.min_eigenvalue;
+  return p;
+}
+
+nlohmann::ordered_json ModelConvexityJson(const Model& model) {
+  nlohmann::ordered_json out;
+  bool convex = true;
+  nlohmann::ordered_json patches = nlohmann::ordered_json::array();
+  for (const PatchConvexity& p : CertifyModelPatches(model)) {
+    convex &= p.certificate.convex;
+    patches.push_back(PatchConvexityJson(p.degree, p.certificate));
+  }
+  out["convex"] = convex;
+  out["patches"] = patches;
+  return out;
+}
+
+}  // namespace implicitfit

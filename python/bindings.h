@@ -1,0 +1,13 @@
+// The parts of the `implicitfit` Python module, each adding its functions and classes to it.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace implicitfit::python {
+
+void BindModel(pybind11::module_& m);  // Model (model_binding.cc)
+void BindFits(pybind11::module_& m);   // fit, fit_tree, fit_patch (fit_binding.cc)
+void BindClouds(
+    pybind11::module_& m);  // read_cloud, estimate_normals, sample, check (cloud_binding.cc)
+
+}  // namespace implicitfit::python

@@ -1,0 +1,171 @@
+// implicitfit.fit, fit_tree, fit_patch: the library's fitters (fit/*.h) on NumPy arrays, with
+// the same reports as `implicitfit fit --report` (fit/fit_report.h). The arrays are copied once
+// into the library's vectors, then the GIL is released for the whole fit (normal estimation
+// included), so Python threads can run fits in parallel.
+// Normals: given ones are used as they are (scaled to unit length if needed); None estimates and
+// orients them as the command line does for a file without normals (datasets/normal_estimation.h),
+// so fit(*read_cloud(path)) fits exactly what `implicitfit fit path` fits.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "datasets/normal_estimation.h"
+#include "fit/fit_report.h"
+#include "fit/patch_fitter.h"
+#include "fit/primitive_fitter.h"
+#include "fit/tree_fitter.h"
+#include "python/arrays.h"
+#include "python/bindings.h"
+#include "python/json_to_python.h"
+
+namespace implicitfit::python {
+namespace {
+
+// The cloud of a fit: points, and normals given or estimated (`action` says which).
+struct FitInput {
+  PointCloud cloud;
+  std::string action;
+  bool estimate = false;
+};
+
+FitInput ReadFitInput(const py::handle& points, const py::handle& normals, size_t min_points) {
+  FitInput in;
+  in.cloud.points = PointsFromArray(points, "points", min_points);
+  if (normals.is_none()) {
+    in.estimate = true;
+  } else {
+    in.cloud.normals = NormalsFromArray(normals, in.cloud.size());
+    in.action = "given";
+  }
+  return in;
+}
+
+// Runs without the GIL.
+void EstimateNormalsIfMissing(FitInput* in) {
+  if (in->estimate) in->action = EnsureOrientedNormals(&in->cloud, NormalOptions{}).action;
+}
+
+unsigned SeedFrom(long long seed) {
+  if (seed < 0 || seed > std::numeric_limits<unsigned>::max())
+    throw py::value_error("seed: must be in [0, 2^32 - 1], got " + std::to_string(seed));
+  return static_cast<unsigned>(seed);
+}
+
+py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degree, bool convex,
+                   const py::handle& tetrahedron) {
+  PatchFitOptions options;
+  options.degree = degree;
+  options.convex = convex;
+  if (!tetrahedron.is_none()) {
+    const Points v = PointsFromArray(tetrahedron, "tetrahedron");
+    if (v.size() != 4) throw py::value_error("tetrahedron: expected a (4, 3) array of vertices");
+    double flat[12];
+    for (int i = 0; i < 4; ++i)
+      for (int c = 0; c < 3; ++c) flat[3 * i + c] = v[i][c];
+    try {
+      options.tetrahedron = Tetrahedron::FromArray(flat);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(std::string("tetrahedron: ") + e.what());
+    }
+    options.has_tetrahedron = true;
+  }
+  std::string error;
+  if (!options.IsValid(&error)) throw py::value_error(error);
+  FitInput in =
+      ReadFitInput(points, normals, static_cast<size_t>(NumBernsteinControlPoints(options.degree)));
+  PatchFitResult result;
+  {
+    py::gil_scoped_release release;
+    EstimateNormalsIfMissing(&in);
+    result = FitBernsteinPatch(in.cloud.points, in.cloud.normals, options);
+  }
+  py::object model = result.success ? py::cast(result.ToModel()) : py::none();
+  return py::make_tuple(model,
+                        ToPython(PatchFitReport(result, options, in.cloud.size(), in.action)));
+}
+
+py::tuple Fit(const py::handle& points, const py::handle& normals, const std::string& kind,
+              long long seed, std::optional<double> threshold, std::optional<py::dict> fix) {
+  if (kind == "quadric-patch" || kind == "cubic-patch")
+    return PatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
+  PrimitiveFitOptions options;
+  if (!FittableKindFromName(kind, &options.kind))
+    throw py::value_error(
+        "kind " + kind +
+        ": unknown (plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch)");
+  options.seed = SeedFrom(seed);
+  if (threshold) {
+    if (!(*threshold > 0.0) || !std::isfinite(*threshold))
+      throw py::value_error("threshold: must be a positive number");
+    options.threshold = *threshold;
+  }
+  if (fix) {
+    for (const auto& [field, value] : *fix) {
+      const std::string name = py::str(field);
+      std::vector<double> values;
+      try {
+        if (py::isinstance<py::str>(value)) throw py::cast_error();
+        if (PySequence_Check(value.ptr()))
+          values = value.cast<std::vector<double>>();
+        else
+          values.push_back(value.cast<double>());  // float, int, NumPy scalars
+      } catch (const py::cast_error&) {
+        throw py::value_error("fix[" + name + "]: expected a number or a sequence of numbers");
+      }
+      options.fixed[name] = values;
+    }
+  }
+  std::string error;
+  if (!options.IsValid(&error)) throw py::value_error(error);
+  FitInput in = ReadFitInput(points, normals, static_cast<size_t>(options.min_inliers));
+  PrimitiveFitResult result;
+  {
+    py::gil_scoped_release release;
+    EstimateNormalsIfMissing(&in);
+    result = FitPrimitive(in.cloud.points, in.cloud.normals, options);
+  }
+  py::object model = result.success ? py::cast(result.ToModel(options.kind)) : py::none();
+  return py::make_tuple(
+      model, ToPython(PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action)));
+}
+
+py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Model& init) {
+  FitInput in = ReadFitInput(points, normals, init.parameters().size());
+  TreeFitResult result;
+  {
+    py::gil_scoped_release release;
+    EstimateNormalsIfMissing(&in);
+    result = FitModelTree(init, in.cloud.points, in.cloud.normals, TreeFitOptions{});
+  }
+  py::object model = result.success ? py::cast(result.model) : py::none();
+  return py::make_tuple(model, ToPython(TreeFitReport(result, in.cloud.size(), in.action)));
+}
+
+}  // namespace
+
+void BindFits(py::module_& m) {
+  m.def(
+      "fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
+      py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
+      "Robust fit of one primitive (plane, sphere, cylinder, cone, torus; quadric-patch and\n"
+      "cubic-patch go to fit_patch), as `implicitfit fit CLOUD --model KIND`.\n"
+      "points, normals: (N, 3) arrays (normals None: estimated and oriented as the command\n"
+      "line does). threshold: initial inlier band (None: 1% of the bounding-box diagonal).\n"
+      "fix: {field: value}, e.g. {\"radius\": 2, \"axis\": [0, 0, 1]}.\n"
+      "Returns (Model, report); Model is None when the fit fails (report[\"message\"] says why).");
+  m.def("fit_tree", &TreeFit, py::arg("points"), py::arg("normals"), py::arg("init"),
+        "Fits every free parameter of a model tree (primitive parameters, delta and epsilon of\n"
+        "blends, control points), as `implicitfit fit CLOUD --init MODEL.json`. Returns (Model, "
+        "report).");
+  m.def("fit_patch", &PatchFit, py::arg("points"), py::arg("normals"), py::arg("degree") = 2,
+        py::arg("convex") = false, py::arg("tetrahedron") = py::none(),
+        "Fits a Bernstein patch of degree 2..4 (convex=True: enforced and certified convex), as\n"
+        "`implicitfit fit CLOUD --model quadric-patch`. tetrahedron: (4, 3) vertices (None: one\n"
+        "enclosing the cloud). Returns (Model, report).");
+}
+
+}  // namespace implicitfit::python

@@ -1,0 +1,65 @@
+"""Shared fixtures of the Python module's tests (registered in CTest by tests/python/CMakeLists.txt).
+
+CTest sets IMPLICITFIT_PYTHON_DIR (the build tree's module, first on PYTHONPATH), IMPLICITFIT_CLI
+(the command line built from the same sources) and IMPLICITFIT_SOURCE_DIR (bundled data). Run by
+hand:  IMPLICITFIT_PYTHON_DIR=build/python IMPLICITFIT_CLI=build/apps/implicitfit \
+       IMPLICITFIT_SOURCE_DIR=. PYTHONPATH=build/python /usr/bin/python3 -m pytest tests/python
+"""
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import implicitfit
+
+
+def _required_env(name):
+    value = os.environ.get(name)
+    if not value:
+        raise pytest.UsageError(f"{name} is not set (see tests/python/conftest.py)")
+    return value
+
+
+def pytest_configure(config):
+    # The module under test must be the build tree's, not an installed copy.
+    module_dir = Path(_required_env("IMPLICITFIT_PYTHON_DIR")).resolve()
+    loaded = Path(implicitfit.__file__).resolve().parent
+    if loaded != module_dir:
+        raise pytest.UsageError(f"implicitfit was imported from {loaded}, not {module_dir}")
+
+
+_skipped = []
+
+
+def pytest_runtest_logreport(report):
+    if report.skipped:
+        _skipped.append(report.nodeid)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    # Nothing may pass silently: no test collected, or a skipped test, fails the run.
+    if session.testscollected == 0 or _skipped:
+        session.exitstatus = 1
+
+
+@pytest.fixture(scope="session")
+def cli():
+    return _required_env("IMPLICITFIT_CLI")
+
+
+@pytest.fixture(scope="session")
+def data_dir():
+    return Path(_required_env("IMPLICITFIT_SOURCE_DIR")) / "datasets" / "data"
+
+
+def run(*args):
+    """Runs a command, returns (exit code, stdout, stderr)."""
+    r = subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=600)
+    return r.returncode, r.stdout, r.stderr
+
+
+def write_model(path, root):
+    import json
+    path.write_text(json.dumps({"format": "implicitfit-model", "version": 1, "root": root}))
+    return path

@@ -1,0 +1,139 @@
+"""The module and the command line on the same files: bit-identical models for the same seed,
+the same reports (but the timing and where the normals came from), the same certificates and
+values. Both run the same library code (fit/fit_report.h, model/convexity_report.h)."""
+import json
+
+import numpy as np
+import pytest
+
+import implicitfit
+from conftest import run, write_model
+
+# Report fields that legitimately differ: wall time, and "normals" ("read from file" on the
+# command line, "given" when the arrays come from Python).
+VOLATILE = {"seconds", "normals"}
+
+
+def cli_fit(cli, tmp_path, cloud, *options):
+    out, report = tmp_path / "cli.json", tmp_path / "cli_report.json"
+    code, _, err = run(cli, "fit", cloud, "--out", out, "--report", report, *options)
+    assert code == 0, err
+    return out.read_text(), json.loads(report.read_text())
+
+
+def assert_same_fit(cli_result, py_result):
+    cli_text, cli_report = cli_result
+    model, report = py_result
+    assert model is not None, report["message"]
+    assert model.to_json() + "\n" == cli_text  # every parameter bit for bit (round-trip precision)
+    assert {k: v for k, v in report.items() if k not in VOLATILE} == \
+           {k: v for k, v in cli_report.items() if k not in VOLATILE}
+
+
+@pytest.fixture(scope="module")
+def noisy_cylinder(tmp_path_factory, cli):
+    d = tmp_path_factory.mktemp("cylinder")
+    truth = write_model(d / "truth.json", {"type": "cylinder", "point": [1, 2, 3],
+                                           "axis": [0.2, -0.3, 0.9], "radius": 0.6})
+    code, _, err = run(cli, "sample", truth, "--count", "6000", "--noise", "0.004", "--outliers", "0.15",
+                       "--seed", "11", "--out", d / "cloud.xyz")
+    assert code == 0, err
+    return d / "cloud.xyz"
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_cylinder_fit_is_bit_identical_to_the_command_line(cli, tmp_path, noisy_cylinder, seed):
+    expected = cli_fit(cli, tmp_path, noisy_cylinder, "--model", "cylinder", "--seed", seed)
+    points, normals = implicitfit.read_cloud(str(noisy_cylinder))
+    assert_same_fit(expected, implicitfit.fit(points, normals, kind="cylinder", seed=seed))
+
+
+def test_options_reach_the_fitter_as_on_the_command_line(cli, tmp_path, noisy_cylinder):
+    expected = cli_fit(cli, tmp_path, noisy_cylinder, "--model", "cylinder", "--seed", "5",
+                       "--threshold", "0.05", "--fix", "radius=0.6")
+    points, normals = implicitfit.read_cloud(str(noisy_cylinder))
+    result = implicitfit.fit(points, normals, kind="cylinder", seed=5, threshold=0.05,
+                             fix={"radius": np.float64(0.6)})
+    assert_same_fit(expected, result)
+    assert result[0].parameters["radius"] == 0.6
+
+
+def test_sphere_on_a_binary_ply_scan(cli, tmp_path, data_dir):
+    cloud = data_dir / "cgal_spheres_10.ply"
+    expected = cli_fit(cli, tmp_path, cloud, "--model", "sphere", "--seed", "2")
+    points, normals = implicitfit.read_cloud(str(cloud))
+    assert_same_fit(expected, implicitfit.fit(points, normals, kind="sphere", seed=2))
+
+
+def test_normals_estimated_as_on_the_command_line(cli, tmp_path, data_dir):
+    # No normals in the file: the command line estimates them (MST); fit(points) must too.
+    bare = tmp_path / "bare.xyz"
+    np.savetxt(bare, np.loadtxt(data_dir / "cgal_sphere_single.xyz")[:, :3], fmt="%.17g")
+    cli_text, cli_report = cli_fit(cli, tmp_path, bare, "--model", "sphere", "--seed", "1")
+    points, normals = implicitfit.read_cloud(str(bare))
+    assert normals is None
+    model, report = implicitfit.fit(points, kind="sphere", seed=1)
+    assert model.to_json() + "\n" == cli_text
+    assert report["normals"] == cli_report["normals"]
+
+
+def test_viewpoint_normals_of_a_pcd_scan(cli, tmp_path, data_dir):
+    # The PCD's VIEWPOINT orients the estimated normals: read_cloud(estimate=True) does the same.
+    cloud = data_dir / "pcl_milk_carton_kinect.pcd"
+    expected = cli_fit(cli, tmp_path, cloud, "--model", "plane", "--seed", "4")
+    points, normals = implicitfit.read_cloud(str(cloud), estimate=True)
+    assert_same_fit(expected, implicitfit.fit(points, normals, kind="plane", seed=4))
+
+
+def test_patch_and_tree_fits(cli, tmp_path, noisy_cylinder, data_dir):
+    cloud = data_dir / "cgal_sphere_single.xyz"
+    points, normals = implicitfit.read_cloud(str(cloud))
+    expected = cli_fit(cli, tmp_path, cloud, "--model", "quadric-patch", "--convex")
+    assert_same_fit(expected, implicitfit.fit_patch(points, normals, degree=2, convex=True))
+    expected = cli_fit(cli, tmp_path, cloud, "--model", "cubic-patch")
+    assert_same_fit(expected, implicitfit.fit(points, normals, kind="cubic-patch"))
+
+    init = write_model(tmp_path / "init.json",
+                       {"type": "sphere", "center": [0.5, -0.2, -0.7], "radius": 0.3})
+    expected = cli_fit(cli, tmp_path, cloud, "--init", init)
+    assert_same_fit(expected, implicitfit.fit_tree(points, normals, implicitfit.Model.load(str(init))))
+
+
+def test_sample_matches_the_command_line(cli, tmp_path):
+    truth = write_model(tmp_path / "torus.json", {"type": "torus", "center": [0, 0, 1], "axis": [1, 0, 0],
+                                                  "major_radius": 1.5, "minor_radius": 0.4})
+    code, _, err = run(cli, "sample", truth, "--count", "2000", "--noise", "0.01", "--outliers", "0.1",
+                       "--seed", "9", "--out", tmp_path / "cli.xyz")
+    assert code == 0, err
+    text = np.loadtxt(tmp_path / "cli.xyz")
+    points, normals = implicitfit.sample(implicitfit.Model.load(str(truth)), 2000, noise=0.01,
+                                         outliers=0.1, seed=9)
+    np.testing.assert_array_equal(points, text[:, :3])   # written with %.17g: exact
+    np.testing.assert_array_equal(normals, text[:, 3:])
+
+
+def test_eval_matches_the_command_line(cli, noisy_cylinder):
+    model_text = '{"format": "implicitfit-model", "version": 1, "root": {"type": "cone", "apex": [1, 2, 3], ' \
+                 '"axis": [0, 0, 1], "half_angle": 0.4}}'
+    path = noisy_cylinder.parent / "cone.json"
+    path.write_text(model_text)
+    code, out, err = run(cli, "eval", path, noisy_cylinder)
+    assert code == 0, err
+    points, _ = implicitfit.read_cloud(str(noisy_cylinder))
+    np.testing.assert_array_equal(implicitfit.Model.from_json(model_text).evaluate(points),
+                                  np.array(out.split(), dtype=float))
+
+
+def test_check_matches_check_json(cli, tmp_path):
+    patch = {"type": "bernstein_patch", "degree": 3,
+             "vertices": [[0, 0, 0], [2, 0, 0], [0, 2, 0], [0, 0, 2]],
+             "control_points": [float(v) for v in np.random.default_rng(6).normal(size=20)]}
+    files = [write_model(tmp_path / "random.json", patch),
+             write_model(tmp_path / "blend.json", {"type": "union", "delta": 0.2, "epsilon": 0.1, "order": 2,
+                                                   "children": [patch, {"type": "sphere", "center": [0, 0, 0],
+                                                                        "radius": 1}]})]
+    code, out, _ = run(cli, "check", "--json", *files)
+    assert code in (0, 1)
+    for entry, path in zip(json.loads(out)["files"], files):
+        assert entry.pop("file") == str(path)
+        assert implicitfit.check(implicitfit.Model.load(str(path))) == entry
