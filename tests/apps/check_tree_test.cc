@@ -1,6 +1,7 @@
 // `implicitfit check` on whole model trees and the additive fields of issue #12: the witness
 // tree of NOTES §0.3 is not certified (exit 1; --patches-only keeps the old vacuous verdict), a
 // convex-smoothing intersection of planes and a sphere is; patches carry the G-2/G-3/G-4 fields.
+// Patch shape-control options of `fit` reject bad values with exit 2.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -77,6 +78,21 @@ TEST(CheckTree, PatchesCarryTheNewCertificateFields) {
   EXPECT_EQ(p["edges"][2]["vertices"], json({0, 3}));
   EXPECT_EQ(p["edges"][2]["sign_changes"], 1);
   EXPECT_EQ(json::parse(r.out)["files"][0]["tree"]["class"], "convex-function");
+}
+
+TEST(FitShapeControl, BadOptionsExit2) {
+  const std::string dir = testsupport::ScratchDir("fit_shape_bad");
+  WriteText(dir + "/c.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n");
+  for (const std::string args : {"--model quadric-patch --vertex-normal 5=0,0,1",
+                                 "--model quadric-patch --vertex-normal 1=0,0",
+                                 "--model quadric-patch --through-edge 2,2",
+                                 "--model quadric-patch --through-vertex 1 --convex",
+                                 "--model quadric-patch --vertex-normal 1=0,0,1 --vertex-normal 2=0,0,1",
+                                 "--model sphere --through-vertex 1"}) {
+    const auto r = RunCommand(kCli + " fit " + dir + "/c.xyz --out " + dir + "/m.json " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_FALSE(testsupport::FileExists(dir + "/m.json")) << args;
+  }
 }
 
 }  // namespace
