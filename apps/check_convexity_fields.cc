@@ -42,12 +42,20 @@ void AppendPatchCertificates(const Model& model, int index, nlohmann::ordered_js
   const CartesianMargin margin = CartesianConvexityMargin(k, node.tetrahedron, b);
   (*patch)["min_eigenvalue_cartesian"] = margin.min_eigenvalue_cartesian;
   (*patch)["hessian_lower_bound"] = margin.hessian_lower_bound;
-  const FinslerCertificate finsler = CertifyFinsler(k, b);
-  (*patch)["finsler"] = {{"convex", finsler.convex},
-                         {"c", finsler.c},
-                         {"margin", finsler.margin},
-                         {"degree", finsler.degree}};
-  (*patch)["locally_convex"] = CertifyLocalConvexity(k, b).locally_convex;
+  // The degree-2k certificate and the subdivision grow like N(k)^2 (N(k) = (k+1)(k+2)(k+3)/6):
+  // above kMaxDegreeForSearch they are not attempted and reported as null.
+  constexpr int kMaxDegreeForSearch = 8;
+  if (k <= kMaxDegreeForSearch) {
+    const FinslerCertificate finsler = CertifyFinsler(k, b);
+    (*patch)["finsler"] = {{"convex", finsler.convex},
+                           {"c", finsler.c},
+                           {"margin", finsler.margin},
+                           {"degree", finsler.degree}};
+    (*patch)["locally_convex"] = CertifyLocalConvexity(k, b).locally_convex;
+  } else {
+    (*patch)["finsler"] = nullptr;
+    (*patch)["locally_convex"] = nullptr;
+  }
   nlohmann::ordered_json edges = nlohmann::ordered_json::array();
   for (const EdgeSignChanges& e : EdgeSignChangeCounts(k, b))
     edges.push_back({{"vertices", {e.vertices[0], e.vertices[1]}}, {"sign_changes", e.sign_changes}});
