@@ -4,6 +4,9 @@
 // file is unreadable or invalid (all files are read before anything is printed).
 // --json prints {"convex", "files": [{"file", "convex", "patches": [{"degree", "convex",
 // "min_eigenvalue"}]}]} (DESIGN.md); --sample N adds a "sample" object per patch and a summary.
+// Additive fields (issue #12, model/convexity_fields.h): per file "tree" and "nodes" (tree
+// certificate), per patch the G-2/G-3/G-4 fields. A file without patches is convex only when its
+// tree is certified (exit 1 otherwise); --patches-only restores the old vacuous verdict.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -13,6 +16,7 @@
 
 #include "apps/command.h"
 #include "datasets/model_file.h"
+#include "model/convexity_fields.h"
 #include "model/convexity_report.h"
 #include "model/tangent_plane_test.h"
 
@@ -23,6 +27,7 @@ struct CheckOptions {
   std::vector<std::string> files;
   bool json = false;
   int sample = 0;  // segments per patch for the tangent-plane test; 0: off
+  bool patches_only = false;  // old verdict: a file without patches counts as convex (vacuous)
 };
 
 struct PatchReport {
@@ -30,6 +35,7 @@ struct PatchReport {
   int degree = 0;
   ConvexityCertificate certificate;
   TangentPlaneTestResult sample;
+  nlohmann::ordered_json extra;  // model/convexity_fields.h (--json only)
 };
 
 struct SampleSummary {
@@ -46,6 +52,8 @@ int Run(const CheckOptions& options) {
   bool all_convex = true;
   SampleSummary summary;
   std::vector<std::vector<PatchReport>> reports(models.size());
+  std::vector<nlohmann::ordered_json> trees(models.size()), tree_verdicts(models.size());
+  std::vector<char> tree_certified(models.size(), 0);
   for (size_t f = 0; f < models.size(); ++f) {
     const Model& model = models[f];
     for (const PatchConvexity& patch : CertifyModelPatches(model)) {
@@ -55,6 +63,7 @@ int Run(const CheckOptions& options) {
       r.degree = patch.degree;
       const double* b = model.parameters().data() + node.first_parameter;
       r.certificate = patch.certificate;
+      if (options.json) AppendPatchCertificates(model, patch.node, &r.extra);
       all_convex &= r.certificate.convex;
       if (options.sample > 0) {
         TangentPlaneTestOptions sample_options;
@@ -76,6 +85,17 @@ int Run(const CheckOptions& options) {
     if (reports[f].empty())
       std::cerr << "implicitfit check: " << options.files[f]
                 << ": no Bernstein patches (nothing to certify)\n";
+    bool certified = false;
+    trees[f] = TreeNodesJson(model, &tree_verdicts[f], &certified);
+    tree_certified[f] = certified;
+    // A file without patches is judged by its tree certificate (not vacuously convex) unless
+    // --patches-only asks for the old verdict.
+    if (reports[f].empty() && !options.patches_only) {
+      all_convex &= tree_certified[f];
+      if (!tree_certified[f])
+        std::cerr << "implicitfit check: " << options.files[f]
+                  << ": the model tree is not certified convex\n";
+    }
   }
 
   if (options.json) {
@@ -91,14 +111,18 @@ int Run(const CheckOptions& options) {
       for (const PatchReport& r : reports[f]) {
         convex &= r.certificate.convex;
         ojson p = PatchConvexityJson(r.degree, r.certificate);
+        for (auto it = r.extra.begin(); it != r.extra.end(); ++it) p[it.key()] = it.value();
         if (options.sample > 0)
           p["sample"] = {{"zero_points", r.sample.zero_points},
                          {"violations", r.sample.violations},
                          {"worst_excursion", r.sample.worst_excursion}};
         patches.push_back(p);
       }
+      if (reports[f].empty() && !options.patches_only) convex = tree_certified[f];
       file["convex"] = convex;
       file["patches"] = patches;
+      file["tree"] = tree_verdicts[f];
+      file["nodes"] = trees[f];
       out["files"].push_back(file);
     }
     if (options.sample > 0)
@@ -119,8 +143,16 @@ int Run(const CheckOptions& options) {
         if (options.sample > 0) std::printf(" %11d %10d", r.sample.zero_points, r.sample.violations);
         std::printf("\n");
       }
-    std::printf("%s\n", all_convex ? "all patches certified convex"
-                                   : "some patches are not certified convex");
+    for (size_t f = 0; f < models.size(); ++f)
+      if (reports[f].empty())
+        std::printf("%-24s %-28s tree: %s\n", options.files[f].c_str(), "(no patches)",
+                    tree_verdicts[f]["class"].get<std::string>().c_str());
+    bool patches_convex = true;
+    for (const auto& file_reports : reports)
+      for (const PatchReport& r : file_reports) patches_convex &= r.certificate.convex;
+    std::printf("%s\n", all_convex       ? "all patches certified convex"
+                       : patches_convex ? "some model trees are not certified convex"
+                                        : "some patches are not certified convex");
     if (options.sample > 0)
       std::printf(
           "sampling (%d segments per patch): %d contradictions, %d not certified but no violation "
@@ -142,6 +174,9 @@ CommandAction AddCheckCommand(CLI::App& app) {
                   "Second opinion: tangent-plane test on the zero set along N random segments "
                   "per patch")
       ->check(CLI::Range(1, 100000000));
+  cmd->add_flag("--patches-only", options->patches_only,
+                "Judge Bernstein patches only, as before issue #12: a file without patches "
+                "counts as convex (vacuously) instead of by its tree certificate");
   return [options]() { return Run(*options); };
 }
 

@@ -27,6 +27,8 @@ struct FitArgs {
   bool convex = false;
   int degree = 0;
   std::vector<double> tetrahedron;
+  std::vector<int> through_vertices;
+  std::vector<std::string> vertex_normals, through_edges;
 };
 
 }  // namespace
@@ -53,8 +55,24 @@ CommandAction AddFitCommand(CLI::App& app) {
       ->delimiter(',')
       ->expected(12)
       ->group("Bernstein patches");
+  cmd->add_option("--through-vertex", a->through_vertices,
+                  "Patch passes exactly through tetrahedron vertex I (1..4): b_{k e_I} = 0")
+      ->check(CLI::Range(1, 4))
+      ->group("Bernstein patches");
+  cmd->add_option("--vertex-normal", a->vertex_normals,
+                  "I=nx,ny,nz: through vertex I with grad f parallel to n (outward)")
+      ->group("Bernstein patches");
+  cmd->add_option("--through-edge", a->through_edges,
+                  "I,J: the edge between vertices I and J lies on the patch")
+      ->group("Bernstein patches");
   return [a]() {
     ModelFitRequest request{a->cloud, a->out, a->report, a->init, a->kind, a->degree, a->convex, a->tetrahedron};
+    request.through_vertices = a->through_vertices;
+    request.vertex_normals = a->vertex_normals;
+    request.through_edges = a->through_edges;
+    if (request.HasShapeConstraints() && !IsPatchKind(a->kind))
+      throw InputError("--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
+                       "and cubic-patch");
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);
     if (a->convex) throw InputError("--convex applies to quadric-patch and cubic-patch");

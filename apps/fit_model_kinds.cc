@@ -1,5 +1,6 @@
 #include "apps/fit_model_kinds.h"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -20,6 +21,55 @@ void Finish(const ModelFitRequest& request, const Model& model, const nlohmann::
   if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
   WriteModelFile(model, request.out);
   std::printf("%s\n", ModelToJson(model)["root"].dump().c_str());
+}
+
+// --through-vertex I, --vertex-normal I=nx,ny,nz, --through-edge I,J (vertices 1..4).
+PatchShapeConstraints ShapeConstraintsFromArguments(const ModelFitRequest& request) {
+  PatchShapeConstraints c;
+  for (int v : request.through_vertices) c.through_vertices.push_back(v - 1);
+  auto numbers = [](const std::string& text, const std::string& option) {
+    std::vector<double> out;
+    size_t start = 0;
+    while (start <= text.size()) {
+      const size_t comma = text.find(',', start);
+      const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      try {
+        size_t used = 0;
+        out.push_back(std::stod(item, &used));
+        if (used != item.size()) throw std::invalid_argument(item);
+      } catch (const std::exception&) {
+        throw InputError(option + " '" + text + "': '" + item + "' is not a number");
+      }
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    return out;
+  };
+  auto vertex = [](double v, const std::string& option, const std::string& text) {
+    if (v != std::floor(v) || v < 1 || v > 4)
+      throw InputError(option + " '" + text + "': vertices are numbered 1..4");
+    return static_cast<int>(v) - 1;
+  };
+  for (const std::string& text : request.vertex_normals) {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos) throw InputError("--vertex-normal '" + text + "': expected I=nx,ny,nz");
+    const std::vector<double> i = numbers(text.substr(0, eq), "--vertex-normal");
+    const std::vector<double> n = numbers(text.substr(eq + 1), "--vertex-normal");
+    if (i.size() != 1 || n.size() != 3) throw InputError("--vertex-normal '" + text + "': expected I=nx,ny,nz");
+    PatchShapeConstraints::VertexNormal vn;
+    vn.vertex = vertex(i[0], "--vertex-normal", text);
+    vn.normal = Eigen::Vector3d(n[0], n[1], n[2]);
+    if (!(vn.normal.norm() > 0.0)) throw InputError("--vertex-normal '" + text + "': the normal must be non-zero");
+    c.vertex_normals.push_back(vn);
+  }
+  for (const std::string& text : request.through_edges) {
+    const std::vector<double> e = numbers(text, "--through-edge");
+    if (e.size() != 2) throw InputError("--through-edge '" + text + "': expected I,J");
+    c.through_edges.push_back({vertex(e[0], "--through-edge", text), vertex(e[1], "--through-edge", text)});
+    if (c.through_edges.back()[0] == c.through_edges.back()[1])
+      throw InputError("--through-edge '" + text + "': two different vertices needed");
+  }
+  return c;
 }
 
 }  // namespace
@@ -56,6 +106,7 @@ int RunPatchFit(const ModelFitRequest& request) {
     }
     options.has_tetrahedron = true;
   }
+  options.constraints = ShapeConstraintsFromArguments(request);
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   std::string normals;

@@ -18,6 +18,12 @@ struct ModelFitRequest {
   int degree = 0;                     // 0: from the kind
   bool convex = false;
   std::vector<double> tetrahedron;    // empty or 12 numbers
+  // Guo §3 shape control (patch kinds): vertices 1..4; "I=nx,ny,nz"; "I,J".
+  std::vector<int> through_vertices;
+  std::vector<std::string> vertex_normals, through_edges;
+  bool HasShapeConstraints() const {
+    return !through_vertices.empty() || !vertex_normals.empty() || !through_edges.empty();
+  }
 };
 
 bool IsPatchKind(const std::string& kind);

@@ -57,6 +57,7 @@ nlohmann::json PatchFitReport(const PatchFitResult& r, const PatchFitOptions& op
                            {"degree", options.degree},
                            {"rms_distance", r.rms},
                            {"mean_normal_angle_deg", r.mean_normal_angle_deg},
+                           {"mean_normal_cosine", r.mean_normal_cosine},
                            {"convex_constraint", options.convex},
                            {"certified_convex", r.certified_convex},
                            {"min_eigenvalue", r.min_eigenvalue},

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -32,8 +33,9 @@ struct PatchPointResidual {
     const T gn = sqrt(g.squaredNorm() + 1e-24);
     r[0] = f / gn;
     if (has_normal) {
-      const double s = ValueOf(g[0]) * n[0] + ValueOf(g[1]) * n[1] + ValueOf(g[2]) * n[2] < 0 ? -1.0 : 1.0;
-      for (int k = 0; k < 3; ++k) r[1 + k] = w * (g[k] / gn - s * n[k]);
+      // Signed: grad f must point along the given (outward) normal, not merely be parallel to
+      // it, so the fitted solid lies on the side the normals call inside (issue #12).
+      for (int k = 0; k < 3; ++k) r[1 + k] = w * (g[k] / gn - n[k]);
     }
     return true;
   }
@@ -162,15 +164,20 @@ std::vector<double> LinearInitialisation(int k, const Tetrahedron& tet, const st
 }
 
 double Rms(int k, const Tetrahedron& tet, const std::vector<double>& b, const std::vector<Vec>& points,
-           const std::vector<Vec>& normals, double* mean_angle) {
-  double ss = 0, angles = 0;
+           const std::vector<Vec>& normals, double* mean_angle, double* mean_cosine = nullptr) {
+  double ss = 0, angles = 0, cosines = 0;
   for (size_t i = 0; i < points.size(); ++i) {
     Eigen::Vector3d g;
     const double f = BernsteinPatch::Derivatives(k, tet, b.data(), points[i].data(), &g);
     ss += f * f / std::max(g.squaredNorm(), 1e-300);
-    if (!normals.empty()) angles += std::acos(std::min(1.0, std::abs(g.normalized().dot(normals[i])))) * 180 / M_PI;
+    if (!normals.empty()) {
+      const double cosine = std::clamp(g.normalized().dot(normals[i]), -1.0, 1.0);  // signed
+      angles += std::acos(cosine) * 180 / M_PI;
+      cosines += cosine;
+    }
   }
   if (mean_angle) *mean_angle = normals.empty() ? -1.0 : angles / points.size();
+  if (mean_cosine) *mean_cosine = normals.empty() ? 0.0 : cosines / points.size();
   return std::sqrt(ss / points.size());
 }
 
@@ -184,6 +191,12 @@ std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b,
       [&](size_t i) { return MakePointResidual<N>(k, tet, points, normals, i, options.normal_weight); }, loss_scale,
       b.data());
   if (guard) problem.AddResidualBlock(new ConvexityGuard(k, N, 1e-6), nullptr, b.data());
+  if (!options.constraints.empty()) {
+    Eigen::MatrixXd basis;
+    std::string error;
+    if (ShapeConstraintBasis(k, tet, options.constraints, &basis, &error))
+      problem.SetManifold(b.data(), NewLinearSubspaceManifold(basis));
+  }
   const ceres::Solver::Summary summary = SolvePatchProblem(&problem, options.max_iterations);
   if (message) *message = summary.IsSolutionUsable() ? "converged" : summary.message;
   return b;
@@ -238,6 +251,22 @@ bool PatchFitOptions::IsValid(std::string* error) const {
     if (error) *error = "--degree must be 2, 3 or 4 for fitting";
     return false;
   }
+  if (convex && !constraints.empty()) {
+    if (error)
+      *error = "--through-vertex, --vertex-normal and --through-edge cannot be combined with --convex";
+    return false;
+  }
+  if (!constraints.empty()) {
+    // Conflicts between the constraints themselves (shared control points) do not depend on
+    // the tetrahedron; check them on the given one or the reference one.
+    Eigen::MatrixXd basis;
+    std::string why;
+    if (!ShapeConstraintBasis(degree, has_tetrahedron ? tetrahedron : Tetrahedron(), constraints,
+                              &basis, &why)) {
+      if (error) *error = "shape constraints: " + why;
+      return false;
+    }
+  }
   return true;
 }
 
@@ -284,6 +313,18 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
 
   // Unconstrained fit (also the reference for the cost of the constraint).
   std::vector<double> b = LinearInitialisation(k, tet, points, normals, h);
+  if (!options.constraints.empty()) {
+    // Start on the constraint subspace: the orthogonal projection N N^T b.
+    Eigen::MatrixXd basis;
+    std::string error;
+    if (!ShapeConstraintBasis(k, tet, options.constraints, &basis, &error)) {
+      result.message = "shape constraints: " + error;
+      return result;
+    }
+    const Eigen::Map<const Eigen::VectorXd> bv(b.data(), static_cast<int>(b.size()));
+    const Eigen::VectorXd projected = basis * (basis.transpose() * bv);
+    b.assign(projected.data(), projected.data() + projected.size());
+  }
   const double init_rms = Rms(k, tet, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * init_rms, 1e-9 * R);
   std::string message;
@@ -302,7 +343,8 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
     if (k >= 3) fitted = RefineAnyDegree(k, tet, fitted, points, normals, options, loss_scale, true, &message);
   }
   result.control_points = fitted;
-  result.rms = Rms(k, tet, fitted, points, normals, &result.mean_normal_angle_deg);
+  result.rms = Rms(k, tet, fitted, points, normals, &result.mean_normal_angle_deg,
+                   &result.mean_normal_cosine);
   const ConvexityCertificate cert = CertifyConvexity(k, fitted.data());
   result.certified_convex = cert.convex;
   result.min_eigenvalue = cert.min_eigenvalue;

@@ -7,7 +7,7 @@
 // 1. Linear initialisation (Eigen, least squares): f(p_i) = 0, f(p_i +- h n_i) = +-h, h = 1% of
 //    R, linear in the control points; it fixes the scale, so f = 0 is excluded.
 // 2. Ceres refinement of r_0 = f / |grad f| (first-order geometric distance) and the normal term
-//    w (grad f / |grad f| - n), grad f analytic (de Casteljau), Cauchy loss at 3 sigma of the
+//    w (grad f / |grad f| - n) (signed: grad f follows the normals' orientation), grad f analytic (de Casteljau), Cauchy loss at 3 sigma of the
 //    initial fit.
 // 3. --convex, every A^mu of DESIGN.md positive definite with the margin
 //    lambda_min(A^mu) >= 1e-6 max|b| (scale-invariant):
@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/patch_shape_constraints.h"
 #include "model/bernstein_patch.h"
 #include "model/model.h"
 
@@ -40,6 +41,9 @@ struct PatchFitOptions {
   Tetrahedron tetrahedron;
   double normal_weight = 0.1;     // w of the normal residuals
   int max_iterations = 200;
+  // Guo §3 shape control (fit/patch_shape_constraints.h): exact linear equalities, not
+  // combined with `convex` (IsValid refuses the pair).
+  PatchShapeConstraints constraints;
   bool IsValid(std::string* error) const;
 };
 
@@ -50,7 +54,9 @@ struct PatchFitResult {
   Tetrahedron tetrahedron;
   std::vector<double> control_points;
   double rms = 0.0;                   // RMS of f/|grad f| over all points
-  double mean_normal_angle_deg = -1;  // mean angle between grad f and the normals
+  double mean_normal_angle_deg = -1;  // mean angle between grad f and the normals (signed:
+                                      // 0..180 deg, > 90 when grad f points against them)
+  double mean_normal_cosine = 0.0;    // mean of grad f . n / |grad f| (signed; 0 without normals)
   double unconstrained_rms = -1.0;    // --convex: RMS of the same fit without the constraint
   double min_eigenvalue = 0.0;        // certificate margin (smallest A^mu eigenvalue)
   bool certified_convex = false;

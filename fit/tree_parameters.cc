@@ -11,6 +11,8 @@ TreeParameters::TreeParameters(const Model& model) {
   const std::vector<double>& p = model.parameters();
   entries_.resize(p.size());
   for (const ModelNode& node : model.nodes()) {
+    // A convex-smoothing blend has no epsilon (width w = delta): its slot is held, not fitted.
+    const bool no_epsilon = node.smoothing == BlendSmoothing::kConvex;
     auto is_fixed = [&node](const std::string& f) {
       return std::find(node.fixed.begin(), node.fixed.end(), f) != node.fixed.end();
     };
@@ -25,14 +27,14 @@ TreeParameters::TreeParameters(const Model& model) {
       if (name == "half_angle") kind = Kind::kAngle;
       if (name == "delta") kind = Kind::kDeltaLog;
       if (name == "epsilon") kind = Kind::kEpsilonLogit;
-      if (is_fixed(name)) {
+      if (is_fixed(name) || (no_epsilon && kind == Kind::kEpsilonLogit)) {
         for (int j = 0; j < field.size; ++j) entries_[k + j].fixed_value = p[k + j];
         k += field.size;
         continue;
       }
       std::vector<double> init(p.begin() + k, p.begin() + k + field.size);
       if (kind == Kind::kDeltaLog) {
-        const bool epsilon_fixed = is_fixed("epsilon");
+        const bool epsilon_fixed = is_fixed("epsilon") && !no_epsilon;
         init[0] = std::log(epsilon_fixed ? std::max(p[k] - p[k + 1], 1e-12 * p[k]) : p[k]);
         if (epsilon_fixed) {
           entries_[k].delta_flat = k + 1;

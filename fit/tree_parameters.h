@@ -11,6 +11,7 @@
 //                                        with epsilon fixed: delta = epsilon + exp(a))
 //   everything else (centres, offsets,
 //   control points, coefficients)       free
+//   delta of a "smoothing": "convex" blend  delta = exp(a) (its epsilon slot is unused, no block)
 // Fields named in a node's "fixed" list get no block: they keep their value.
 #pragma once
 

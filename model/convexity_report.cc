@@ -1,5 +1,7 @@
 #include "model/convexity_report.h"
 
+#include "model/convexity_fields.h"
+
 namespace implicitfit {
 
 std::vector<PatchConvexity> CertifyModelPatches(const Model& model) {
@@ -29,12 +31,22 @@ nlohmann::ordered_json ModelConvexityJson(const Model& model) {
   nlohmann::ordered_json out;
   bool convex = true;
   nlohmann::ordered_json patches = nlohmann::ordered_json::array();
-  for (const PatchConvexity& p : CertifyModelPatches(model)) {
+  const std::vector<PatchConvexity> certified = CertifyModelPatches(model);
+  for (const PatchConvexity& p : certified) {
     convex &= p.certificate.convex;
-    patches.push_back(PatchConvexityJson(p.degree, p.certificate));
+    nlohmann::ordered_json entry = PatchConvexityJson(p.degree, p.certificate);
+    AppendPatchCertificates(model, p.node, &entry);
+    patches.push_back(entry);
   }
+  nlohmann::ordered_json tree;
+  bool tree_certified = false;
+  const nlohmann::ordered_json nodes = TreeNodesJson(model, &tree, &tree_certified);
+  // A model without patches is judged by its tree certificate, not vacuously convex.
+  if (certified.empty()) convex = tree_certified;
   out["convex"] = convex;
   out["patches"] = patches;
+  out["tree"] = tree;
+  out["nodes"] = nodes;
   return out;
 }
 

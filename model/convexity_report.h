@@ -1,8 +1,11 @@
 // The convexity certificates of every Bernstein patch of a model (model/convexity_certificate.h)
 // and their JSON form, as `implicitfit check --json` prints it per file and the Python module's
 // check() returns it:
-//   {"convex": bool, "patches": [{"degree": k, "convex": bool, "min_eigenvalue": x}]}
-// "convex" is true when every patch is certified (and for a model without patches).
+//   {"convex": bool, "patches": [{"degree": k, "convex": bool, "min_eigenvalue": x, ...}],
+//    "tree": {...}, "nodes": [...]}
+// (the additive per-patch, "tree" and "nodes" fields: model/convexity_fields.h). "convex" is
+// true when every patch is certified; a model without patches is judged by its tree
+// certificate (model/tree_certificate.h), not vacuously convex.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -26,7 +29,7 @@ std::vector<PatchConvexity> CertifyModelPatches(const Model& model);
 
 // {"degree", "convex", "min_eigenvalue"} of one patch.
 nlohmann::ordered_json PatchConvexityJson(int degree, const ConvexityCertificate& certificate);
-// {"convex", "patches"} of a whole model.
+// {"convex", "patches", "tree", "nodes"} of a whole model (no sampling fields).
 nlohmann::ordered_json ModelConvexityJson(const Model& model);
 
 }  // namespace implicitfit

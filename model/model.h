@@ -8,6 +8,7 @@
 //
 // Operators with more than two children fold left to right: op(op(c0, c1), c2) ...
 // Operator parameters: [delta, epsilon] with 0 < epsilon <= delta; order 0 is sharp min/max.
+// With smoothing kConvex the blend width is w = delta and epsilon is unused (kept = delta).
 // Bernstein patches (model/bernstein_patch.h): the node holds the degree k and the tetrahedron
 // (structure); its parameters are the (k+1)(k+2)(k+3)/6 control points, field "control_points".
 #pragma once
@@ -18,6 +19,7 @@
 
 #include "model/bernstein_patch.h"
 #include "model/cone.h"
+#include "model/convex_smooth_ops.h"
 #include "model/cylinder.h"
 #include "model/ellipsoid.h"
 #include "model/plane.h"
@@ -57,6 +59,11 @@ const std::vector<ParameterField>& ParameterFieldsOf(NodeType type);
 // Number of parameters a primitive or operator node owns (0 for bernstein_patch: per node).
 int NumParametersOf(NodeType type);
 
+// The smooth max of a union / intersection / difference node ("smoothing" in JSON):
+// Li & Phillips' S_max (delta, epsilon; model/smooth_ops.h), or the convexity-preserving
+// S^c_max of model/convex_smooth_ops.h (width w = delta; the epsilon slot is unused).
+enum class BlendSmoothing { kLiPhillips, kConvex };
+
 struct ModelNode {
   NodeType type = NodeType::kSphere;
   std::string name;                  // optional user label ("name" in JSON)
@@ -64,6 +71,7 @@ struct ModelNode {
   int num_parameters = 0;            // how many it owns
   std::vector<int> children;         // operators: indices into Model::nodes
   int order = 0;                     // operators: n of H_n (0 = sharp)
+  BlendSmoothing smoothing = BlendSmoothing::kLiPhillips;  // operators: which smooth max
   std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
   int degree = 0;                    // bernstein_patch: k >= 1
   Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
@@ -136,6 +144,15 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       T acc = EvaluateNode(node.children[0], params, x);
       for (size_t c = 1; c < node.children.size(); ++c) {
         const T b = EvaluateNode(node.children[c], params, x);
+        if (node.smoothing == BlendSmoothing::kConvex) {
+          if (node.type == NodeType::kUnion)
+            acc = ConvexSmoothUnion(acc, b, p[0], node.order);
+          else if (node.type == NodeType::kIntersection)
+            acc = ConvexSmoothIntersection(acc, b, p[0], node.order);
+          else
+            acc = ConvexSmoothDifference(acc, b, p[0], node.order);
+          continue;
+        }
         if (node.type == NodeType::kUnion)
           acc = SmoothUnion(acc, b, p[0], p[1], node.order);
         else if (node.type == NodeType::kIntersection)

@@ -182,10 +182,27 @@ int ReadBernsteinPatch(const json& node, const std::string& path, const std::str
   return model->AddBernsteinPatch(static_cast<int>(k), tetrahedron, b, name);
 }
 
+// Operators: "smoothing": "li-phillips" (default when absent) | "convex". A convex blend has
+// the width w = delta and no epsilon: a present "epsilon" is refused rather than ignored.
+BlendSmoothing ReadSmoothing(const json& node, const std::string& path) {
+  if (!node.contains("smoothing")) return BlendSmoothing::kLiPhillips;
+  const json& v = node.at("smoothing");
+  const std::string where = path + ".smoothing";
+  if (!v.is_string()) Fail(where, "must be \"li-phillips\" or \"convex\"");
+  const std::string value = v.get<std::string>();
+  if (value == "li-phillips") return BlendSmoothing::kLiPhillips;
+  if (value != "convex")
+    Fail(where, "unknown smoothing '" + value + "' (\"li-phillips\" or \"convex\")");
+  if (node.contains("epsilon"))
+    Fail(path + ".epsilon",
+         "must be absent with \"smoothing\": \"convex\" (the blend width is delta)");
+  return BlendSmoothing::kConvex;
+}
+
 std::set<std::string> AllowedKeys(NodeType type) {
   std::set<std::string> keys = {"type", "name", "fixed"};
   if (IsOperator(type)) {
-    keys.insert({"children", "delta", "epsilon", "order"});
+    keys.insert({"children", "delta", "epsilon", "order", "smoothing"});
   } else {
     for (const ParameterField& f : ParameterFieldsOf(type)) keys.insert(f.name);
   }
@@ -236,8 +253,10 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     if (!node.contains("children") || !node.at("children").is_array() ||
         node.at("children").size() < 2)
       Fail(path + ".children", "must be an array of at least 2 nodes");
+    const BlendSmoothing smoothing = ReadSmoothing(node, path);
     const double delta = Number(node, "delta", path);
-    const double epsilon = Number(node, "epsilon", path);
+    const double epsilon =
+        smoothing == BlendSmoothing::kConvex ? delta : Number(node, "epsilon", path);
     if (!node.contains("order") || !node.at("order").is_number_integer())
       Fail(path + ".order", "missing or not an integer");
     const long long order = node.at("order").get<long long>();
@@ -252,6 +271,7 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
       children.push_back(
           ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", depth + 1, model));
     index = model->AddOperator(type, children, delta, epsilon, static_cast<int>(order), name);
+    model->mutable_nodes()[index].smoothing = smoothing;
   } else if (type == NodeType::kBernsteinPatch) {
     index = ReadBernsteinPatch(node, path, name, model);
   } else {
@@ -276,7 +296,10 @@ json WriteNode(const Model& model, int index) {
     for (int c : node.children) children.push_back(WriteNode(model, c));
     out["children"] = children;
     out["delta"] = p[node.first_parameter];
-    out["epsilon"] = p[node.first_parameter + 1];
+    if (node.smoothing == BlendSmoothing::kConvex)
+      out["smoothing"] = "convex";  // width w = delta; no epsilon
+    else
+      out["epsilon"] = p[node.first_parameter + 1];
     out["order"] = node.order;
   } else if (node.type == NodeType::kBernsteinPatch) {
     out["degree"] = node.degree;

@@ -7,26 +7,12 @@
 
 namespace implicitfit {
 
-TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tet, const double* b,
-                                        const TangentPlaneTestOptions& options) {
+TangentPlaneTestResult TangentPlaneTestCore(
+    const std::function<Eigen::Vector3d()>& random_point,
+    const std::function<double(const Eigen::Vector3d&)>& f,
+    const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& gradient, double longest,
+    double min_gradient, const TangentPlaneTestOptions& options) {
   TangentPlaneTestResult result;
-  double longest = 0.0, largest = 0.0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (tet.vertex(i) - tet.vertex(j)).norm());
-  for (long long i = 0; i < NumBernsteinControlPoints(k); ++i) largest = std::max(largest, std::abs(b[i]));
-  if (largest == 0.0) return result;
-
-  std::mt19937_64 rng(options.seed);
-  std::exponential_distribution<double> exponential(1.0);
-  auto random_point = [&]() {
-    double w[4], sum = 0.0;
-    for (double& x : w) sum += (x = exponential(rng));
-    Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int i = 0; i < 4; ++i) p += (w[i] / sum) * tet.vertex(i);
-    return p;
-  };
-  auto f = [&](const Eigen::Vector3d& x) { return BernsteinPatch::Evaluate(k, tet, b, x.data()); };
-
   std::vector<Eigen::Vector3d> points, normals;
   for (int s = 0; s < options.segments; ++s) {
     const Eigen::Vector3d a = random_point(), c = random_point();
@@ -42,9 +28,8 @@ TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tet, const dou
           if ((f(mid) < 0.0) == (f0 < 0.0)) lo = mid; else hi = mid;
         }
         const Eigen::Vector3d p = 0.5 * (lo + hi);
-        Eigen::Matrix<double, 3, 1> g;
-        BernsteinPatch::Derivatives(k, tet, b, p.data(), &g);
-        if (g.norm() * longest > 1e-6 * largest) {
+        const Eigen::Vector3d g = gradient(p);
+        if (g.norm() > min_gradient) {
           points.push_back(p);
           normals.push_back(g.normalized());
         }
@@ -62,6 +47,49 @@ TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tet, const dou
     if (worst > allowed) ++result.violations;
   }
   return result;
+}
+
+TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tet, const double* b,
+                                        const TangentPlaneTestOptions& options) {
+  double longest = 0.0, largest = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (tet.vertex(i) - tet.vertex(j)).norm());
+  for (long long i = 0; i < NumBernsteinControlPoints(k); ++i) largest = std::max(largest, std::abs(b[i]));
+  if (largest == 0.0) return TangentPlaneTestResult{};
+
+  std::mt19937_64 rng(options.seed);
+  std::exponential_distribution<double> exponential(1.0);
+  auto random_point = [&]() {
+    double w[4], sum = 0.0;
+    for (double& x : w) sum += (x = exponential(rng));
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) p += (w[i] / sum) * tet.vertex(i);
+    return p;
+  };
+  auto f = [&](const Eigen::Vector3d& x) { return BernsteinPatch::Evaluate(k, tet, b, x.data()); };
+  auto gradient = [&](const Eigen::Vector3d& x) {
+    Eigen::Matrix<double, 3, 1> g;
+    BernsteinPatch::Derivatives(k, tet, b, x.data(), &g);
+    return Eigen::Vector3d(g);
+  };
+  return TangentPlaneTestCore(random_point, f, gradient, longest, 1e-6 * largest / longest,
+                              options);
+}
+
+TangentPlaneTestResult TangentPlaneTest(const Model& model, const Eigen::Vector3d& box_min,
+                                        const Eigen::Vector3d& box_max,
+                                        const TangentPlaneTestOptions& options) {
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto random_point = [&]() {
+    Eigen::Vector3d p;
+    for (int i = 0; i < 3; ++i) p[i] = box_min[i] + (box_max[i] - box_min[i]) * u(rng);
+    return p;
+  };
+  auto f = [&](const Eigen::Vector3d& x) { return model.Value(x); };
+  auto gradient = [&](const Eigen::Vector3d& x) { return model.Gradient(x); };
+  const double diagonal = (box_max - box_min).norm();
+  return TangentPlaneTestCore(random_point, f, gradient, diagonal, 1e-9 / diagonal, options);
 }
 
 }  // namespace implicitfit

@@ -13,9 +13,12 @@
 // inside the tetrahedron. Deterministic for a given seed.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 
 #include "model/bernstein_patch.h"
+#include "model/model.h"
 
 namespace implicitfit {
 
@@ -35,5 +38,20 @@ struct TangentPlaneTestResult {
 TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tetrahedron,
                                         const double* control_points,
                                         const TangentPlaneTestOptions& options = {});
+
+// The same test for any model over an axis-aligned box (NOTES LP-4 c): segments between uniform
+// random points of the box, L = the box diagonal, gradients by Model::Gradient; zero points with
+// |grad f| L <= 1e-9 (|f| scale unknown) are skipped. It tests the solid {f <= 0} inside the box.
+TangentPlaneTestResult TangentPlaneTest(const Model& model, const Eigen::Vector3d& box_min,
+                                        const Eigen::Vector3d& box_max,
+                                        const TangentPlaneTestOptions& options = {});
+
+// The shared core: `random_point` draws segment ends, `value` is f, `gradient` is grad f;
+// zero points with |grad f| <= min_gradient are skipped; L = `length`.
+TangentPlaneTestResult TangentPlaneTestCore(
+    const std::function<Eigen::Vector3d()>& random_point,
+    const std::function<double(const Eigen::Vector3d&)>& value,
+    const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& gradient, double length,
+    double min_gradient, const TangentPlaneTestOptions& options);
 
 }  // namespace implicitfit

@@ -148,11 +148,17 @@ def test_check_against_hand_derived_guo_matrices():
     # DESIGN.md order for k = 2: 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
     # b(2e_i) = 1 for i = 1..3, all else 0: A_ij = b(e_i + e_j) + b(2e_4) - b(e_i+e_4) - b(e_j+e_4) = I.
     convex = implicitfit.Model.from_json(degree2_patch([1, 0, 0, 0, 1, 0, 0, 1, 0, 0]))
-    assert implicitfit.check(convex) == {
-        "convex": True, "patches": [{"degree": 2, "convex": True, "min_eigenvalue": 1.0}]}
+    report = implicitfit.check(convex)
+    assert report["convex"] is True
+    assert len(report["patches"]) == 1
+    assert {k: report["patches"][0][k] for k in ("degree", "convex", "min_eigenvalue")} == {
+        "degree": 2, "convex": True, "min_eigenvalue": 1.0}
     # b(2e_1) = 1 only: A = diag(1, 0, 0), smallest eigenvalue 0: not certified.
     flat = implicitfit.check(implicitfit.Model.from_json(degree2_patch([1, 0, 0, 0, 0, 0, 0, 0, 0, 0])))
     assert flat["convex"] is False
     assert flat["patches"][0]["min_eigenvalue"] == pytest.approx(0.0, abs=1e-15)
     no_patch = implicitfit.Model.from_json(model_text(CYLINDER))
-    assert implicitfit.check(no_patch) == {"convex": True, "patches": []}
+    # No patch: judged by the tree certificate (a cylinder's distance is a convex function).
+    report = implicitfit.check(no_patch)
+    assert report["convex"] is True and report["patches"] == []
+    assert report["tree"]["certified"] is True
