@@ -10,6 +10,19 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
+void NodeBox(const Model& model, int index, Vec* lo, Vec* hi);
+
+// The union of the children's boxes.
+void ChildrenBox(const Model& model, const ModelNode& node, Vec* lo, Vec* hi) {
+  NodeBox(model, node.children[0], lo, hi);
+  for (size_t c = 1; c < node.children.size(); ++c) {
+    Vec l, h;
+    NodeBox(model, node.children[c], &l, &h);
+    *lo = lo->cwiseMin(l);
+    *hi = hi->cwiseMax(h);
+  }
+}
+
 void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
   const ModelNode& node = model.nodes()[index];
   const double* p = model.parameters().data() + node.first_parameter;
@@ -33,6 +46,9 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
     case NodeType::kTorus: around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05); return;
     case NodeType::kEllipsoid: around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]})); return;
     case NodeType::kQuadric: around(Vec::Zero(), 2.0); return;
+    case NodeType::kBox: around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm()); return;
+    case NodeType::kComplement:
+    case NodeType::kMorph: ChildrenBox(model, node, lo, hi); return;
     default: {
       NodeBox(model, node.children[0], lo, hi);
       for (size_t c = 1; c < node.children.size(); ++c) {

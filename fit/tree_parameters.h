@@ -4,6 +4,9 @@
 //   radius, major_radius, minor_radius,
 //   radii                               lower bound 0
 //   half_angle                          bounds (0, pi/2)
+//   box axes (a quaternion w, x, y, z)  ceres::QuaternionManifold
+//   box half_sizes                      lower bound 0
+//   morph t                             t = 1 / (1 + exp(-b)), so 0 < t < 1 for every b
 //   delta, epsilon of a blend           reparameterised so that 0 < epsilon <= delta holds for
 //                                       every value of the free variables:
 //                                         delta = exp(a),  epsilon = delta / (1 + exp(-b))
@@ -39,7 +42,9 @@ class TreeParameters {
   std::vector<double> ToFlat() const;
 
  private:
-  enum class Kind { kPlain, kDirection, kPositive, kAngle, kDeltaLog, kEpsilonLogit };
+  enum class Kind {
+    kPlain, kDirection, kPositive, kAngle, kDeltaLog, kEpsilonLogit, kQuaternion, kUnitLogit
+  };
   struct Entry {  // one flat parameter
     int block = -1, offset = 0;   // -1: fixed
     double fixed_value = 0.0;
@@ -63,6 +68,8 @@ void TreeParameters::ToFlat(T const* const* blocks, T* flat) const {
     } else if (e.kind == Kind::kDeltaLog) {
       flat[i] = exp(blocks[e.block][e.offset]);
       if (e.delta_flat >= 0) flat[i] += T(entries_[e.delta_flat].fixed_value);  // epsilon fixed
+    } else if (e.kind == Kind::kUnitLogit) {
+      flat[i] = 1.0 / (1.0 + exp(-blocks[e.block][e.offset]));
     } else if (e.kind != Kind::kEpsilonLogit) {
       flat[i] = blocks[e.block][e.offset];
     }

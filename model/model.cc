@@ -28,6 +28,9 @@ const std::vector<TypeInfo>& Types() {
       {NodeType::kUnion, "union", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kIntersection, "intersection", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kDifference, "difference", {{"delta", 1}, {"epsilon", 1}}},
+      {NodeType::kBox, "box", {{"center", 3}, {"axes", 4}, {"half_sizes", 3}}},
+      {NodeType::kComplement, "complement", {}},
+      {NodeType::kMorph, "morph", {{"t", 1}}},
   };
   return types;
 }
@@ -65,6 +68,17 @@ bool IsOperator(NodeType type) {
          type == NodeType::kDifference;
 }
 
+bool IsComposite(NodeType type) {
+  return type == NodeType::kComplement || type == NodeType::kMorph;
+}
+
+// Children a composite node takes (-1: any number >= 1).
+static int CompositeArity(NodeType type) {
+  if (type == NodeType::kComplement) return 1;
+  if (type == NodeType::kMorph) return 2;
+  return -1;
+}
+
 int NumParametersOf(NodeType type) {
   int n = 0;
   for (const ParameterField& field : InfoOf(type).fields) n += field.size;
@@ -81,7 +95,8 @@ int Model::AddNode(ModelNode node, const std::vector<double>& parameters) {
 }
 
 int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, std::string name) {
-  if (IsOperator(type)) throw std::invalid_argument("AddPrimitive: operator type");
+  if (IsOperator(type) || IsComposite(type))
+    throw std::invalid_argument("AddPrimitive: operator type");
   if (type == NodeType::kBernsteinPatch)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
@@ -91,6 +106,28 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
   node.type = type;
   node.name = std::move(name);
   return AddNode(std::move(node), parameters);
+}
+
+int Model::AddComposite(NodeType type, std::vector<int> children,
+                        const std::vector<double>& parameters, std::string name) {
+  if (!IsComposite(type)) throw std::invalid_argument("AddComposite: not a composite type");
+  const int arity = CompositeArity(type);
+  if (children.empty() || (arity > 0 && static_cast<int>(children.size()) != arity))
+    throw std::invalid_argument(std::string("AddComposite: ") + NodeTypeName(type) + " takes " +
+                                std::to_string(arity) + " children");
+  for (int c : children)
+    if (c < 0 || c >= static_cast<int>(nodes_.size()))
+      throw std::invalid_argument("AddComposite: child index out of range");
+  if (static_cast<int>(parameters.size()) != NumParametersOf(type))
+    throw std::invalid_argument(std::string("AddComposite: ") + NodeTypeName(type) + " takes " +
+                                std::to_string(NumParametersOf(type)) + " parameters");
+  ModelNode node;
+  node.type = type;
+  node.name = std::move(name);
+  node.children = std::move(children);
+  const int index = AddNode(std::move(node), parameters);
+  root_ = index;  // as for operators: the node added last is the natural root
+  return index;
 }
 
 int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,

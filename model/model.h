@@ -17,10 +17,12 @@
 #include <vector>
 
 #include "model/bernstein_patch.h"
+#include "model/box.h"
 #include "model/cone.h"
 #include "model/cylinder.h"
 #include "model/ellipsoid.h"
 #include "model/plane.h"
+#include "model/morph.h"
 #include "model/quadric.h"
 #include "model/smooth_ops.h"
 #include "model/sphere.h"
@@ -40,12 +42,18 @@ enum class NodeType {
   kUnion,
   kIntersection,
   kDifference,
+  kBox,         // exact box SDF (model/box.h)
+  kComplement,  // -f of its one child (model/morph.h)
+  kMorph,       // t f_A + (1 - t) f_B of its two children (model/morph.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
 const char* NodeTypeName(NodeType type);
 bool NodeTypeFromName(const std::string& name, NodeType* type);
 bool IsOperator(NodeType type);
+// Nodes with children that are not smooth CSG operators (complement, morph, ...): their
+// parameters are their own fields (ParameterFieldsOf), their children any nodes.
+bool IsComposite(NodeType type);
 // The named groups of a node type's parameters in flat-vector order, e.g. sphere:
 // center (3), radius (1). The JSON fields carry the same names. A field of size 0 has a
 // per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it.
@@ -67,6 +75,7 @@ struct ModelNode {
   std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
   int degree = 0;                    // bernstein_patch: k >= 1
   Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
+  int count = 0;                     // kinds with per-element fields: number of elements
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -82,6 +91,10 @@ class Model {
   // (DESIGN.md order); throws std::invalid_argument otherwise.
   int AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
                         const std::vector<double>& control_points, std::string name = "");
+  // A composite node (IsComposite: complement, morph, ...) over existing nodes, with its own
+  // parameters (ParameterFieldsOf); throws std::invalid_argument on a wrong count of either.
+  int AddComposite(NodeType type, std::vector<int> children, const std::vector<double>& parameters,
+                   std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -145,6 +158,11 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       }
       return acc;
     }
+    case NodeType::kBox: return BoxEvaluator::Evaluate(p, x);
+    case NodeType::kComplement: return -EvaluateNode(node.children[0], params, x);
+    case NodeType::kMorph:
+      return Morph(p[0], EvaluateNode(node.children[0], params, x),
+                   EvaluateNode(node.children[1], params, x));
   }
   return T(0.0);
 }

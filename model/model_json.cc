@@ -1,5 +1,6 @@
 #include "model/model_json.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <set>
 
@@ -87,6 +88,19 @@ std::vector<double> EllipsoidAxes(const json& node, const std::string& path) {
   return out;
 }
 
+// Box "axes" (as the ellipsoid's: 2 or 3 orthogonal rows) as the unit quaternion (w, x, y, z)
+// of the rotation whose columns are e1, e2, e1 x e2 (model/box.h).
+std::vector<double> BoxQuaternion(const json& node, const std::string& path) {
+  const std::vector<double> axes = EllipsoidAxes(node, path);
+  const Eigen::Vector3d e1 = Eigen::Vector3d(axes[0], axes[1], axes[2]).normalized();
+  Eigen::Vector3d e2(axes[3], axes[4], axes[5]);
+  e2 = (e2 - e2.dot(e1) * e1).normalized();
+  Eigen::Matrix3d r;
+  r << e1, e2, e1.cross(e2);
+  const Eigen::Quaterniond q(r);
+  return {q.w(), q.x(), q.y(), q.z()};
+}
+
 std::vector<double> PrimitiveParameters(NodeType type, const json& node, const std::string& path) {
   std::vector<double> p;
   auto append = [&p](const std::vector<double>& v) { p.insert(p.end(), v.begin(), v.end()); };
@@ -138,6 +152,14 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
       if (largest == 0.0) Fail(path + ".coefficients", "must not all be zero");
       break;
     }
+    case NodeType::kBox: {
+      append(Vector(node, "center", 3, path));
+      append(BoxQuaternion(node, path));
+      append(Vector(node, "half_sizes", 3, path));
+      for (int i = 0; i < 3; ++i)
+        RequirePositive(p[7 + i], path + ".half_sizes[" + std::to_string(i) + "]");
+      break;
+    }
     default:
       Fail(path, "internal: not a primitive");
   }
@@ -179,6 +201,29 @@ int ReadBernsteinPatch(const json& node, const std::string& path, const std::str
   return model->AddBernsteinPatch(static_cast<int>(k), tetrahedron, b, name);
 }
 
+int ReadNode(const json& node, const std::string& path, Model* model);
+
+// complement {"children": [A]}; morph {"children": [A, B], "t": t in [0, 1]}.
+int ReadComposite(NodeType type, const json& node, const std::string& path,
+                  const std::string& name, Model* model) {
+  const size_t arity = type == NodeType::kComplement ? 1 : 2;
+  if (!node.contains("children") || !node.at("children").is_array() ||
+      node.at("children").size() != arity)
+    Fail(path + ".children", "must be an array of " + std::to_string(arity) + " node" +
+                                 (arity > 1 ? "s" : ""));
+  std::vector<double> parameters;
+  if (type == NodeType::kMorph) {
+    const double t = Number(node, "t", path);
+    if (!(t >= 0.0 && t <= 1.0)) Fail(path + ".t", "must be in [0, 1]");
+    parameters.push_back(t);
+  }
+  std::vector<int> children;
+  const json& ch = node.at("children");
+  for (size_t i = 0; i < ch.size(); ++i)
+    children.push_back(ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", model));
+  return model->AddComposite(type, children, parameters, name);
+}
+
 std::set<std::string> AllowedKeys(NodeType type) {
   std::set<std::string> keys = {"type", "name", "fixed"};
   if (IsOperator(type)) {
@@ -187,6 +232,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
     for (const ParameterField& f : ParameterFieldsOf(type)) keys.insert(f.name);
   }
   if (type == NodeType::kBernsteinPatch) keys.insert({"degree", "vertices"});
+  if (IsComposite(type)) keys.insert("children");
   return keys;
 }
 
@@ -241,6 +287,8 @@ int ReadNode(const json& node, const std::string& path, Model* model) {
     index = model->AddOperator(type, children, delta, epsilon, static_cast<int>(order), name);
   } else if (type == NodeType::kBernsteinPatch) {
     index = ReadBernsteinPatch(node, path, name, model);
+  } else if (IsComposite(type)) {
+    index = ReadComposite(type, node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -274,6 +322,24 @@ json WriteNode(const Model& model, int index) {
     }
     out["vertices"] = vertices;
     out["control_points"] = Slice(p, node.first_parameter, node.num_parameters);
+  } else if (IsComposite(node.type)) {
+    json children = json::array();
+    for (int c : node.children) children.push_back(WriteNode(model, c));
+    out["children"] = children;
+    int k = node.first_parameter;
+    for (const ParameterField& f : ParameterFieldsOf(node.type)) {
+      out[f.name] = f.size == 1 ? json(p[k]) : Slice(p, k, f.size);
+      k += f.size;
+    }
+  } else if (node.type == NodeType::kBox) {
+    const int b = node.first_parameter;
+    out["center"] = Slice(p, b, 3);
+    double e[3][3];
+    BoxEvaluator::Axes(&p[b + 3], e);
+    out["axes"] = json::array({json::array({e[0][0], e[0][1], e[0][2]}),
+                               json::array({e[1][0], e[1][1], e[1][2]}),
+                               json::array({e[2][0], e[2][1], e[2][2]})});
+    out["half_sizes"] = Slice(p, b + 7, 3);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);
