@@ -47,6 +47,7 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
     case NodeType::kEllipsoid: around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]})); return;
     case NodeType::kQuadric: around(Vec::Zero(), 2.0); return;
     case NodeType::kBox: around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm()); return;
+    case NodeType::kParaboloid: around(Vec(p[0], p[1], p[2]), 1.0); return;  // the cap |w| <= 1
     case NodeType::kComplement:
     case NodeType::kMorph: ChildrenBox(model, node, lo, hi); return;
     default: {

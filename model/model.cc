@@ -31,6 +31,7 @@ const std::vector<TypeInfo>& Types() {
       {NodeType::kBox, "box", {{"center", 3}, {"axes", 4}, {"half_sizes", 3}}},
       {NodeType::kComplement, "complement", {}},
       {NodeType::kMorph, "morph", {{"t", 1}}},
+      {NodeType::kParaboloid, "paraboloid", {{"vertex", 3}, {"axis", 3}, {"curvature", 1}}},
   };
   return types;
 }

@@ -23,6 +23,7 @@
 #include "model/ellipsoid.h"
 #include "model/plane.h"
 #include "model/morph.h"
+#include "model/paraboloid.h"
 #include "model/quadric.h"
 #include "model/smooth_ops.h"
 #include "model/sphere.h"
@@ -45,6 +46,7 @@ enum class NodeType {
   kBox,         // exact box SDF (model/box.h)
   kComplement,  // -f of its one child (model/morph.h)
   kMorph,       // t f_A + (1 - t) f_B of its two children (model/morph.h)
+  kParaboloid,  // vertex, axis, curvature (model/paraboloid.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -160,6 +162,7 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     }
     case NodeType::kBox: return BoxEvaluator::Evaluate(p, x);
     case NodeType::kComplement: return -EvaluateNode(node.children[0], params, x);
+    case NodeType::kParaboloid: return ParaboloidEvaluator::Evaluate(p, x);
     case NodeType::kMorph:
       return Morph(p[0], EvaluateNode(node.children[0], params, x),
                    EvaluateNode(node.children[1], params, x));

@@ -108,6 +108,14 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
     case NodeType::kPlane:
       append(Vector(node, "normal", 3, path));
       RequireNonZero(p, 0, path + ".normal");
+      if (node.contains("point")) {  // LP-2 input form: through a point; stored unit normal, offset
+        if (node.contains("offset")) Fail(path + ".point", "give either point or offset, not both");
+        const std::vector<double> x = Vector(node, "point", 3, path);
+        const double n = Norm(p);
+        for (int i = 0; i < 3; ++i) p[i] /= n;
+        p.push_back(p[0] * x[0] + p[1] * x[1] + p[2] * x[2]);
+        break;
+      }
       p.push_back(Number(node, "offset", path));
       break;
     case NodeType::kSphere:
@@ -160,6 +168,12 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
         RequirePositive(p[7 + i], path + ".half_sizes[" + std::to_string(i) + "]");
       break;
     }
+    case NodeType::kParaboloid:
+      append(Vector(node, "vertex", 3, path));
+      append(Vector(node, "axis", 3, path));
+      RequireNonZero(p, 3, path + ".axis");
+      p.push_back(Number(node, "curvature", path));
+      break;
     default:
       Fail(path, "internal: not a primitive");
   }
@@ -233,6 +247,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   }
   if (type == NodeType::kBernsteinPatch) keys.insert({"degree", "vertices"});
   if (IsComposite(type)) keys.insert("children");
+  if (type == NodeType::kPlane) keys.insert("point");  // input form; written as normal, offset
   return keys;
 }
 

@@ -52,6 +52,27 @@ struct BoxKind {
   }
 };
 
+// Paraboloid: vertex P, axis n, curvature 0.8; points P + w - (kappa / 2) |w|^2 n, normal
+// n + kappa w (normalised), |w| <= 1.2.
+struct ParaboloidKind {
+  static constexpr bool kTrueDistance = false;
+  static constexpr double kKappa = 0.8;
+  static Vec P() { return Vec(0.2, 0.1, -0.3); }
+  static Vec N() { return Vec(0.3, -0.5, 1.0).normalized(); }
+  static Model Build() {
+    Model m;
+    m.AddPrimitive(NodeType::kParaboloid, {0.2, 0.1, -0.3, 0.3, -0.5, 1.0, kKappa});
+    return m;
+  }
+  static SurfacePoint Sample(std::mt19937& rng) {
+    std::uniform_real_distribution<double> r(0.0, 1.2), th(0, 2 * M_PI);
+    const Vec n = N(), e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+    const double rho = r(rng), theta = th(rng);
+    const Vec w = rho * (std::cos(theta) * e1 + std::sin(theta) * e2);
+    return {P() + w - 0.5 * kKappa * rho * rho * n, (n + kKappa * w).normalized()};
+  }
+};
+
 template <typename Kind>
 class KindProperties : public ::testing::Test {
  protected:
@@ -59,7 +80,7 @@ class KindProperties : public ::testing::Test {
   std::mt19937 rng_{4321};
 };
 
-using Kinds = ::testing::Types<BoxKind>;
+using Kinds = ::testing::Types<BoxKind, ParaboloidKind>;
 TYPED_TEST_SUITE(KindProperties, Kinds);
 
 TYPED_TEST(KindProperties, SampledSurfacePointsAreOnTheZeroSet) {
