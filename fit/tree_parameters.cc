@@ -26,10 +26,12 @@ TreeParameters::TreeParameters(const Model& model) {
       if (name == "half_angle") kind = Kind::kAngle;
       if (node.type == NodeType::kBox && name == "axes") kind = Kind::kQuaternion;
       if (name == "half_sizes") kind = Kind::kPositive;
+      if (node.type == NodeType::kBlobs && name == "widths") kind = Kind::kPositive;
+      const bool structural = node.type == NodeType::kBlobs && name == "threshold";
       if (node.type == NodeType::kMorph && name == "t") kind = Kind::kUnitLogit;
       if (name == "delta") kind = Kind::kDeltaLog;
       if (name == "epsilon") kind = Kind::kEpsilonLogit;
-      if (is_fixed(name)) {
+      if (is_fixed(name) || structural) {
         for (int j = 0; j < field.size; ++j) entries_[k + j].fixed_value = p[k + j];
         k += field.size;
         continue;

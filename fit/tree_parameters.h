@@ -7,6 +7,8 @@
 //   box axes (a quaternion w, x, y, z)  ceres::QuaternionManifold
 //   box half_sizes                      lower bound 0
 //   morph t                             t = 1 / (1 + exp(-b)), so 0 < t < 1 for every b
+//   blobs widths                        lower bound 0
+//   blobs threshold                     never fitted (it fixes the scale of f)
 //   delta, epsilon of a blend           reparameterised so that 0 < epsilon <= delta holds for
 //                                       every value of the free variables:
 //                                         delta = exp(a),  epsilon = delta / (1 + exp(-b))

@@ -32,6 +32,10 @@ const std::vector<TypeInfo>& Types() {
       {NodeType::kComplement, "complement", {}},
       {NodeType::kMorph, "morph", {{"t", 1}}},
       {NodeType::kParaboloid, "paraboloid", {{"vertex", 3}, {"axis", 3}, {"curvature", 1}}},
+      {NodeType::kBlobs,
+       "blobs",
+       {{"centers", -3}, {"weights", -1}, {"widths", -1}, {"threshold", 1}}},
+      {NodeType::kSkeletonOffset, "skeleton_offset", {{"skeleton", -3}, {"radius", 1}}},
   };
   return types;
 }
@@ -52,6 +56,7 @@ std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
   std::vector<ParameterField> fields = ParameterFieldsOf(node.type);
   for (ParameterField& field : fields)
     if (field.size == 0) field.size = node.num_parameters;  // the one per-node field
+    else if (field.size < 0) field.size *= -node.count;        // per element
   return fields;
 }
 
@@ -82,7 +87,7 @@ static int CompositeArity(NodeType type) {
 
 int NumParametersOf(NodeType type) {
   int n = 0;
-  for (const ParameterField& field : InfoOf(type).fields) n += field.size;
+  for (const ParameterField& field : InfoOf(type).fields) n += std::max(field.size, 0);
   return n;
 }
 
@@ -100,6 +105,8 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
     throw std::invalid_argument("AddPrimitive: operator type");
   if (type == NodeType::kBernsteinPatch)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
+  if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset)
+    throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -129,6 +136,45 @@ int Model::AddComposite(NodeType type, std::vector<int> children,
   const int index = AddNode(std::move(node), parameters);
   root_ = index;  // as for operators: the node added last is the natural root
   return index;
+}
+
+int Model::AddBlobs(BlobKernel kernel, int order, const std::vector<double>& centers,
+                    const std::vector<double>& weights, const std::vector<double>& widths,
+                    double threshold, std::string name) {
+  const size_t m = weights.size();
+  if (m == 0 || centers.size() != 3 * m || widths.size() != m)
+    throw std::invalid_argument("AddBlobs: need m >= 1 weights, 3 m centre coordinates, m widths");
+  if (kernel == BlobKernel::kUnitStep && (order < 1 || order > UnitStep::kMaxOrder))
+    throw std::invalid_argument("AddBlobs: the h_n kernel needs an order 1.." +
+                                std::to_string(UnitStep::kMaxOrder));
+  ModelNode node;
+  node.type = NodeType::kBlobs;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.variant = static_cast<int>(kernel);
+  node.order = kernel == BlobKernel::kUnitStep ? order : 0;
+  std::vector<double> p = centers;
+  p.insert(p.end(), weights.begin(), weights.end());
+  p.insert(p.end(), widths.begin(), widths.end());
+  p.push_back(threshold);
+  return AddNode(std::move(node), p);
+}
+
+int Model::AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
+                             std::string name) {
+  const size_t m = points.size() / 3;
+  if (m == 0 || points.size() != 3 * m ||
+      (kind == SkeletonKind::kSegments && m % 2 != 0) || (kind == SkeletonKind::kPolyline && m < 2))
+    throw std::invalid_argument("AddSkeletonOffset: points (3 numbers each), two per segment, "
+                                ">= 2 for a polyline");
+  ModelNode node;
+  node.type = NodeType::kSkeletonOffset;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.variant = static_cast<int>(kind);
+  std::vector<double> p = points;
+  p.push_back(radius);
+  return AddNode(std::move(node), p);
 }
 
 int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "model/bernstein_patch.h"
+#include "model/blobs.h"
 #include "model/box.h"
 #include "model/cone.h"
 #include "model/cylinder.h"
@@ -25,6 +26,7 @@
 #include "model/morph.h"
 #include "model/paraboloid.h"
 #include "model/quadric.h"
+#include "model/skeleton_offset.h"
 #include "model/smooth_ops.h"
 #include "model/sphere.h"
 #include "model/torus.h"
@@ -47,6 +49,8 @@ enum class NodeType {
   kComplement,  // -f of its one child (model/morph.h)
   kMorph,       // t f_A + (1 - t) f_B of its two children (model/morph.h)
   kParaboloid,  // vertex, axis, curvature (model/paraboloid.h)
+  kBlobs,           // Blinn blobs and compact kernels (model/blobs.h)
+  kSkeletonOffset,  // offsets of points, segments, polylines (model/skeleton_offset.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -58,7 +62,9 @@ bool IsOperator(NodeType type);
 bool IsComposite(NodeType type);
 // The named groups of a node type's parameters in flat-vector order, e.g. sphere:
 // center (3), radius (1). The JSON fields carry the same names. A field of size 0 has a
-// per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it.
+// per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it. A
+// negative size -s means s per element (blobs: centers -3, weights -1; skeleton_offset:
+// skeleton -3 per point), ParameterFieldsOf(node) multiplies by the node's element count.
 struct ParameterField {
   const char* name;
   int size;
@@ -78,6 +84,7 @@ struct ModelNode {
   int degree = 0;                    // bernstein_patch: k >= 1
   Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
   int count = 0;                     // kinds with per-element fields: number of elements
+  int variant = 0;                   // blobs: BlobKernel; skeleton_offset: SkeletonKind
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -97,6 +104,16 @@ class Model {
   // parameters (ParameterFieldsOf); throws std::invalid_argument on a wrong count of either.
   int AddComposite(NodeType type, std::vector<int> children, const std::vector<double>& parameters,
                    std::string name = "");
+  // Blobs (model/blobs.h): m = weights.size() >= 1 centres (3 m numbers), weights, widths
+  // (> 0), threshold; order n of H_n for BlobKernel::kUnitStep (1..14). Throws
+  // std::invalid_argument on inconsistent sizes.
+  int AddBlobs(BlobKernel kernel, int order, const std::vector<double>& centers,
+               const std::vector<double>& weights, const std::vector<double>& widths,
+               double threshold, std::string name = "");
+  // Skeleton offset (model/skeleton_offset.h): points as 3 numbers each (segments: two end
+  // points each; polyline: >= 2 vertices), radius.
+  int AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
+                        std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -163,6 +180,12 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kBox: return BoxEvaluator::Evaluate(p, x);
     case NodeType::kComplement: return -EvaluateNode(node.children[0], params, x);
     case NodeType::kParaboloid: return ParaboloidEvaluator::Evaluate(p, x);
+    case NodeType::kBlobs:
+      return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order,
+                                      node.count, p, x);
+    case NodeType::kSkeletonOffset:
+      return SkeletonOffsetEvaluator::Evaluate(static_cast<SkeletonKind>(node.variant),
+                                               node.count, p, x);
     case NodeType::kMorph:
       return Morph(p[0], EvaluateNode(node.children[0], params, x),
                    EvaluateNode(node.children[1], params, x));

@@ -238,6 +238,79 @@ int ReadComposite(NodeType type, const json& node, const std::string& path,
   return model->AddComposite(type, children, parameters, name);
 }
 
+// blobs {"centers": [[3],...], "weights": [...], "widths": [...], "threshold": T,
+//        "kernel": "gaussian" | "wyvill" | "h_n", "order": n (h_n only, default 3)}.
+int ReadBlobs(const json& node, const std::string& path, const std::string& name, Model* model) {
+  if (!node.contains("centers") || !node.at("centers").is_array() || node.at("centers").empty())
+    Fail(path + ".centers", "must be a non-empty array of points [x, y, z]");
+  const json& c = node.at("centers");
+  const size_t m = c.size();
+  std::vector<double> centers;
+  for (size_t i = 0; i < m; ++i) {
+    const std::vector<double> x = Vector(c[i], 3, path + ".centers[" + std::to_string(i) + "]");
+    centers.insert(centers.end(), x.begin(), x.end());
+  }
+  const std::vector<double> weights = Vector(node, "weights", m, path);
+  const std::vector<double> widths = Vector(node, "widths", m, path);
+  for (size_t i = 0; i < m; ++i) RequirePositive(widths[i], path + ".widths[" + std::to_string(i) + "]");
+  const double threshold = Number(node, "threshold", path);
+  if (!node.contains("kernel") || !node.at("kernel").is_string())
+    Fail(path + ".kernel", "missing or not a string (gaussian, wyvill or h_n)");
+  const std::string k = node.at("kernel").get<std::string>();
+  BlobKernel kernel;
+  if (k == "gaussian") kernel = BlobKernel::kGaussian;
+  else if (k == "wyvill") kernel = BlobKernel::kWyvill;
+  else if (k == "h_n") kernel = BlobKernel::kUnitStep;
+  else Fail(path + ".kernel", "unknown kernel '" + k + "' (gaussian, wyvill or h_n)");
+  long long order = 3;
+  if (node.contains("order")) {
+    if (kernel != BlobKernel::kUnitStep) Fail(path + ".order", "only the h_n kernel takes an order");
+    if (!node.at("order").is_number_integer()) Fail(path + ".order", "must be an integer");
+    order = node.at("order").get<long long>();
+    if (order < 1 || order > UnitStep::kMaxOrder)
+      Fail(path + ".order", "must be an integer in 1.." + std::to_string(UnitStep::kMaxOrder));
+  }
+  return model->AddBlobs(kernel, static_cast<int>(order), centers, weights, widths, threshold, name);
+}
+
+// skeleton_offset {"skeleton": {"points": [[3],...]} | {"segments": [[[3],[3]],...]} |
+//                  {"polyline": [[3],...]}, "radius": r}.
+int ReadSkeletonOffset(const json& node, const std::string& path, const std::string& name,
+                       Model* model) {
+  const std::string where = path + ".skeleton";
+  if (!node.contains("skeleton") || !node.at("skeleton").is_object() || node.at("skeleton").size() != 1)
+    Fail(where, "must be an object with exactly one of points, segments, polyline");
+  const json& s = node.at("skeleton");
+  const std::string key = s.begin().key();
+  const json& list = s.begin().value();
+  SkeletonKind kind;
+  if (key == "points") kind = SkeletonKind::kPoints;
+  else if (key == "segments") kind = SkeletonKind::kSegments;
+  else if (key == "polyline") kind = SkeletonKind::kPolyline;
+  else Fail(where + "." + key, "unknown skeleton (points, segments or polyline)");
+  const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
+  if (!list.is_array() || list.size() < least)
+    Fail(where + "." + key, "must be an array of at least " + std::to_string(least) +
+                                (kind == SkeletonKind::kSegments ? " segment [[3], [3]]" : " points [x, y, z]"));
+  std::vector<double> points;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string at = where + "." + key + "[" + std::to_string(i) + "]";
+    if (kind == SkeletonKind::kSegments) {
+      if (!list[i].is_array() || list[i].size() != 2) Fail(at, "must hold 2 points [x, y, z]");
+      for (size_t e = 0; e < 2; ++e) {
+        const std::vector<double> x = Vector(list[i][e], 3, at + "[" + std::to_string(e) + "]");
+        points.insert(points.end(), x.begin(), x.end());
+      }
+    } else {
+      const std::vector<double> x = Vector(list[i], 3, at);
+      points.insert(points.end(), x.begin(), x.end());
+    }
+  }
+  const double radius = Number(node, "radius", path);
+  RequirePositive(radius, path + ".radius");
+  return model->AddSkeletonOffset(kind, points, radius, name);
+}
+
 std::set<std::string> AllowedKeys(NodeType type) {
   std::set<std::string> keys = {"type", "name", "fixed"};
   if (IsOperator(type)) {
@@ -248,6 +321,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kBernsteinPatch) keys.insert({"degree", "vertices"});
   if (IsComposite(type)) keys.insert("children");
   if (type == NodeType::kPlane) keys.insert("point");  // input form; written as normal, offset
+  if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
   return keys;
 }
 
@@ -304,6 +378,10 @@ int ReadNode(const json& node, const std::string& path, Model* model) {
     index = ReadBernsteinPatch(node, path, name, model);
   } else if (IsComposite(type)) {
     index = ReadComposite(type, node, path, name, model);
+  } else if (type == NodeType::kBlobs) {
+    index = ReadBlobs(node, path, name, model);
+  } else if (type == NodeType::kSkeletonOffset) {
+    index = ReadSkeletonOffset(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -346,6 +424,32 @@ json WriteNode(const Model& model, int index) {
       out[f.name] = f.size == 1 ? json(p[k]) : Slice(p, k, f.size);
       k += f.size;
     }
+  } else if (node.type == NodeType::kBlobs) {
+    const int b = node.first_parameter, m = node.count;
+    json centers = json::array();
+    for (int i = 0; i < m; ++i) centers.push_back(Slice(p, b + 3 * i, 3));
+    out["centers"] = centers;
+    out["weights"] = Slice(p, b + 3 * m, m);
+    out["widths"] = Slice(p, b + 4 * m, m);
+    out["threshold"] = p[b + 5 * m];
+    const BlobKernel kernel = static_cast<BlobKernel>(node.variant);
+    out["kernel"] = kernel == BlobKernel::kGaussian ? "gaussian"
+                    : kernel == BlobKernel::kWyvill ? "wyvill" : "h_n";
+    if (kernel == BlobKernel::kUnitStep) out["order"] = node.order;
+  } else if (node.type == NodeType::kSkeletonOffset) {
+    const int b = node.first_parameter, m = node.count;
+    const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
+    json list = json::array();
+    if (kind == SkeletonKind::kSegments) {
+      for (int i = 0; i < m; i += 2)
+        list.push_back(json::array({Slice(p, b + 3 * i, 3), Slice(p, b + 3 * i + 3, 3)}));
+    } else {
+      for (int i = 0; i < m; ++i) list.push_back(Slice(p, b + 3 * i, 3));
+    }
+    const char* key = kind == SkeletonKind::kPoints ? "points"
+                      : kind == SkeletonKind::kSegments ? "segments" : "polyline";
+    out["skeleton"] = json{{key, list}};
+    out["radius"] = p[b + 3 * m];
   } else if (node.type == NodeType::kBox) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);

@@ -73,6 +73,62 @@ struct ParaboloidKind {
   }
 };
 
+// One Gaussian blob (a = 3, b = 2, T = 1.2): the sphere R = sqrt(ln(a / T) / b), normal radial.
+struct GaussianBlobKind {
+  static constexpr bool kTrueDistance = false;
+  static Model Build() {
+    Model m;
+    m.AddBlobs(BlobKernel::kGaussian, 0, {0.2, -0.1, 0.4}, {3.0}, {2.0}, 1.2);
+    return m;
+  }
+  static SurfacePoint Sample(std::mt19937& rng) {
+    std::normal_distribution<double> g;
+    const Vec d = Vec(g(rng), g(rng), g(rng)).normalized();
+    return {Vec(0.2, -0.1, 0.4) + std::sqrt(std::log(3.0 / 1.2) / 2.0) * d, d};
+  }
+};
+
+// One compact blob with the cubic step kernel, a = 2 T: the sphere R = w / 2 = 0.7.
+struct StepBlobKind {
+  static constexpr bool kTrueDistance = false;
+  static Model Build() {
+    Model m;
+    m.AddBlobs(BlobKernel::kUnitStep, 3, {0.0, 0.3, -0.2}, {2.0}, {1.4}, 1.0);
+    return m;
+  }
+  static SurfacePoint Sample(std::mt19937& rng) {
+    std::normal_distribution<double> g;
+    const Vec d = Vec(g(rng), g(rng), g(rng)).normalized();
+    return {Vec(0.0, 0.3, -0.2) + 0.7 * d, d};
+  }
+};
+
+// Capsule: segment a-b, radius 0.35; half the points on the cylinder part, half on the caps.
+struct CapsuleKind {
+  static constexpr bool kTrueDistance = true;
+  static Vec A() { return Vec(-0.4, 0.2, 0.1); }
+  static Vec B() { return Vec(0.5, -0.3, 0.6); }
+  static Model Build() {
+    Model m;
+    m.AddSkeletonOffset(SkeletonKind::kSegments, {-0.4, 0.2, 0.1, 0.5, -0.3, 0.6}, 0.35);
+    return m;
+  }
+  static SurfacePoint Sample(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::normal_distribution<double> g;
+    const Vec axis = (B() - A()).normalized();
+    if (u(rng) < 0.5) {
+      const Vec e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+      const double theta = 2 * M_PI * u(rng);
+      const Vec radial = std::cos(theta) * e1 + std::sin(theta) * e2;
+      return {A() + u(rng) * (B() - A()) + 0.35 * radial, radial};
+    }
+    Vec d = Vec(g(rng), g(rng), g(rng)).normalized();
+    const bool at_b = d.dot(axis) > 0;
+    return {(at_b ? B() : A()) + 0.35 * d, d};
+  }
+};
+
 template <typename Kind>
 class KindProperties : public ::testing::Test {
  protected:
@@ -80,7 +136,7 @@ class KindProperties : public ::testing::Test {
   std::mt19937 rng_{4321};
 };
 
-using Kinds = ::testing::Types<BoxKind, ParaboloidKind>;
+using Kinds = ::testing::Types<BoxKind, ParaboloidKind, GaussianBlobKind, StepBlobKind, CapsuleKind>;
 TYPED_TEST_SUITE(KindProperties, Kinds);
 
 TYPED_TEST(KindProperties, SampledSurfacePointsAreOnTheZeroSet) {
