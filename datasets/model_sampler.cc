@@ -76,6 +76,7 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       *hi += Vec::Constant(r);
       return;
     }
+    case NodeType::kPartition:
     case NodeType::kComplement:
     case NodeType::kMorph: ChildrenBox(model, node, lo, hi); return;
     default: {

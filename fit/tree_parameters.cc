@@ -31,6 +31,11 @@ TreeParameters::TreeParameters(const Model& model) {
       if (node.type == NodeType::kMorph && name == "t") kind = Kind::kUnitLogit;
       if (name == "delta") kind = Kind::kDeltaLog;
       if (name == "epsilon") kind = Kind::kEpsilonLogit;
+      double scale = 1.0;
+      if (node.type == NodeType::kPartition) {
+        scale = SmallestPartitionCell(node.cuts) / 2.0;
+        kind = scale < 1e307 ? Kind::kUnitLogit : Kind::kLog;
+      }
       if (is_fixed(name) || structural) {
         for (int j = 0; j < field.size; ++j) entries_[k + j].fixed_value = p[k + j];
         k += field.size;
@@ -50,8 +55,9 @@ TreeParameters::TreeParameters(const Model& model) {
         init[0] = std::log(ratio / (1.0 - ratio));
         entries_[k].delta_flat = delta_flat;
       }
+      if (kind == Kind::kLog) init[0] = std::log(p[k]);
       if (kind == Kind::kUnitLogit) {
-        const double t = std::clamp(p[k], 1e-9, 1.0 - 1e-9);
+        const double t = std::clamp(p[k] / scale, 1e-9, 1.0 - 1e-9);
         init[0] = std::log(t / (1.0 - t));
       }
       if (kind == Kind::kDirection || kind == Kind::kQuaternion) {
@@ -64,6 +70,7 @@ TreeParameters::TreeParameters(const Model& model) {
         entries_[k + j].block = block;
         entries_[k + j].offset = j;
         entries_[k + j].kind = kind;
+        entries_[k + j].scale = scale;
         if (kind == Kind::kEpsilonLogit) entries_[k + j].delta_flat = delta_flat;
       }
       blocks_.push_back(init);

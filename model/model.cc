@@ -36,6 +36,7 @@ const std::vector<TypeInfo>& Types() {
        "blobs",
        {{"centers", -3}, {"weights", -1}, {"widths", -1}, {"threshold", 1}}},
       {NodeType::kSkeletonOffset, "skeleton_offset", {{"skeleton", -3}, {"radius", 1}}},
+      {NodeType::kPartition, "partition", {{"epsilon", 1}}},
   };
   return types;
 }
@@ -105,8 +106,8 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
     throw std::invalid_argument("AddPrimitive: operator type");
   if (type == NodeType::kBernsteinPatch)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
-  if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset)
-    throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset");
+  if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset || type == NodeType::kPartition)
+    throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset / AddPartition");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -135,6 +136,35 @@ int Model::AddComposite(NodeType type, std::vector<int> children,
   node.children = std::move(children);
   const int index = AddNode(std::move(node), parameters);
   root_ = index;  // as for operators: the node added last is the natural root
+  return index;
+}
+
+int Model::AddPartition(std::vector<std::vector<double>> cuts, double epsilon, int order,
+                        std::vector<int> children, std::string name) {
+  if (cuts.size() != 3) throw std::invalid_argument("AddPartition: cuts for x, y and z");
+  if (!(epsilon > 0.0)) throw std::invalid_argument("AddPartition: epsilon must be > 0");
+  if (order < 0 || order > UnitStep::kMaxOrder) throw std::invalid_argument("AddPartition: order");
+  size_t cells = 1;
+  for (const std::vector<double>& c : cuts) {
+    for (size_t i = 1; i < c.size(); ++i)
+      if (!(c[i] > c[i - 1])) throw std::invalid_argument("AddPartition: cuts must increase");
+    cells *= c.size() + 1;
+  }
+  if (SmallestPartitionCell(cuts) < 2.0 * epsilon)
+    throw std::invalid_argument("AddPartition: a cell is narrower than 2 epsilon");
+  if (children.size() != cells)
+    throw std::invalid_argument("AddPartition: needs " + std::to_string(cells) + " children");
+  for (int c : children)
+    if (c < 0 || c >= static_cast<int>(nodes_.size()))
+      throw std::invalid_argument("AddPartition: child index out of range");
+  ModelNode node;
+  node.type = NodeType::kPartition;
+  node.name = std::move(name);
+  node.children = std::move(children);
+  node.order = order;
+  node.cuts = std::move(cuts);
+  const int index = AddNode(std::move(node), {epsilon});
+  root_ = index;
   return index;
 }
 

@@ -25,6 +25,7 @@
 #include "model/plane.h"
 #include "model/morph.h"
 #include "model/paraboloid.h"
+#include "model/partition.h"
 #include "model/quadric.h"
 #include "model/skeleton_offset.h"
 #include "model/smooth_ops.h"
@@ -51,6 +52,7 @@ enum class NodeType {
   kParaboloid,  // vertex, axis, curvature (model/paraboloid.h)
   kBlobs,           // Blinn blobs and compact kernels (model/blobs.h)
   kSkeletonOffset,  // offsets of points, segments, polylines (model/skeleton_offset.h)
+  kPartition,       // soft space partition on a grid (model/partition.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -85,6 +87,7 @@ struct ModelNode {
   Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
   int count = 0;                     // kinds with per-element fields: number of elements
   int variant = 0;                   // blobs: BlobKernel; skeleton_offset: SkeletonKind
+  std::vector<std::vector<double>> cuts;  // partition: the cuts of x, y, z (structure)
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -114,6 +117,11 @@ class Model {
   // points each; polyline: >= 2 vertices), radius.
   int AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
                         std::string name = "");
+  // Grid partition (model/partition.h): 3 strictly increasing cut lists, every finite cell
+  // >= 2 epsilon wide, (a+1)(b+1)(c+1) children (x fastest), 0 <= order <= 14; throws
+  // std::invalid_argument otherwise.
+  int AddPartition(std::vector<std::vector<double>> cuts, double epsilon, int order,
+                   std::vector<int> children, std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -180,6 +188,25 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kBox: return BoxEvaluator::Evaluate(p, x);
     case NodeType::kComplement: return -EvaluateNode(node.children[0], params, x);
     case NodeType::kParaboloid: return ParaboloidEvaluator::Evaluate(p, x);
+    case NodeType::kPartition: {
+      const UnitStep& mu = UnitStep::OfOrder(node.order);
+      int cells[3][PartitionAxis::kMaxCells];
+      T factors[3][PartitionAxis::kMaxCells];
+      int counts[3];
+      for (int k = 0; k < 3; ++k)
+        counts[k] = PartitionAxis::Factors(node.cuts[k], x[k], p[0], mu, cells[k], factors[k]);
+      const int nx = static_cast<int>(node.cuts[0].size()) + 1;
+      const int ny = static_cast<int>(node.cuts[1].size()) + 1;
+      T acc = T(0.0);
+      for (int k = 0; k < counts[2]; ++k)
+        for (int j = 0; j < counts[1]; ++j)
+          for (int i = 0; i < counts[0]; ++i) {
+            const int child = cells[0][i] + nx * (cells[1][j] + ny * cells[2][k]);
+            acc += factors[0][i] * factors[1][j] * factors[2][k] *
+                   EvaluateNode(node.children[child], params, x);
+          }
+      return acc;
+    }
     case NodeType::kBlobs:
       return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order,
                                       node.count, p, x);

@@ -311,6 +311,47 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   return model->AddSkeletonOffset(kind, points, radius, name);
 }
 
+// partition {"cuts": [[x..], [y..], [z..]], "epsilon": e, "order": n, "children": [...]}:
+// strictly increasing cuts, every finite cell >= 2 epsilon wide (the partition of unity needs
+// it), one child per cell, x fastest.
+int ReadPartition(const json& node, const std::string& path, const std::string& name, Model* model) {
+  const double epsilon = Number(node, "epsilon", path);
+  RequirePositive(epsilon, path + ".epsilon");
+  if (!node.contains("order") || !node.at("order").is_number_integer())
+    Fail(path + ".order", "missing or not an integer");
+  const long long order = node.at("order").get<long long>();
+  if (order < 0 || order > UnitStep::kMaxOrder)
+    Fail(path + ".order", "must be an integer in 0.." + std::to_string(UnitStep::kMaxOrder));
+  if (!node.contains("cuts") || !node.at("cuts").is_array() || node.at("cuts").size() != 3)
+    Fail(path + ".cuts", "must hold 3 arrays of cut positions (x, y, z; each may be empty)");
+  std::vector<std::vector<double>> cuts(3);
+  size_t cells = 1;
+  const char* axis = "xyz";
+  for (size_t k = 0; k < 3; ++k) {
+    const std::string where = path + ".cuts[" + std::to_string(k) + "]";
+    const json& c = node.at("cuts")[k];
+    if (!c.is_array()) Fail(where, "must be an array of numbers");
+    cuts[k] = Vector(c, c.size(), where);
+    for (size_t i = 1; i < cuts[k].size(); ++i) {
+      const double width = cuts[k][i] - cuts[k][i - 1];
+      if (!(width > 0.0)) Fail(where + "[" + std::to_string(i) + "]", "cuts must be strictly increasing");
+      if (width < 2.0 * epsilon)
+        Fail(where + "[" + std::to_string(i) + "]",
+             std::string("the cell between ") + axis[k] + " = " + json(cuts[k][i - 1]).dump() + " and " +
+                 json(cuts[k][i]).dump() + " is " + json(width).dump() + " wide, less than 2 epsilon = " +
+                 json(2.0 * epsilon).dump() + " (the bases are a partition of unity only from 2 epsilon)");
+    }
+    cells *= cuts[k].size() + 1;
+  }
+  if (!node.contains("children") || !node.at("children").is_array() || node.at("children").size() != cells)
+    Fail(path + ".children", "must hold one node per cell: " + std::to_string(cells) + " nodes, x fastest");
+  std::vector<int> children;
+  const json& ch = node.at("children");
+  for (size_t i = 0; i < ch.size(); ++i)
+    children.push_back(ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", model));
+  return model->AddPartition(cuts, epsilon, static_cast<int>(order), children, name);
+}
+
 std::set<std::string> AllowedKeys(NodeType type) {
   std::set<std::string> keys = {"type", "name", "fixed"};
   if (IsOperator(type)) {
@@ -322,6 +363,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (IsComposite(type)) keys.insert("children");
   if (type == NodeType::kPlane) keys.insert("point");  // input form; written as normal, offset
   if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
+  if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
   return keys;
 }
 
@@ -380,6 +422,8 @@ int ReadNode(const json& node, const std::string& path, Model* model) {
     index = ReadComposite(type, node, path, name, model);
   } else if (type == NodeType::kBlobs) {
     index = ReadBlobs(node, path, name, model);
+  } else if (type == NodeType::kPartition) {
+    index = ReadPartition(node, path, name, model);
   } else if (type == NodeType::kSkeletonOffset) {
     index = ReadSkeletonOffset(node, path, name, model);
   } else {
@@ -424,6 +468,13 @@ json WriteNode(const Model& model, int index) {
       out[f.name] = f.size == 1 ? json(p[k]) : Slice(p, k, f.size);
       k += f.size;
     }
+  } else if (node.type == NodeType::kPartition) {
+    out["cuts"] = node.cuts;
+    out["epsilon"] = p[node.first_parameter];
+    out["order"] = node.order;
+    json children = json::array();
+    for (int c : node.children) children.push_back(WriteNode(model, c));
+    out["children"] = children;
   } else if (node.type == NodeType::kBlobs) {
     const int b = node.first_parameter, m = node.count;
     json centers = json::array();
