@@ -37,7 +37,7 @@ CommandAction AddFitCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to an oriented point cloud");
   auto a = std::make_shared<FitArgs>();
   cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals estimated when absent)")->required();
-  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch");
+  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, box, paraboloid, capsule");
   auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (primitive parameters, delta and epsilon, control points)");
   model_opt->excludes(init_opt);
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
@@ -75,6 +75,7 @@ CommandAction AddFitCommand(CLI::App& app) {
                        "and cubic-patch");
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);
+    if (IsShapeKind(a->kind)) return RunShapeFit(request, a->seed);
     if (a->convex) throw InputError("--convex applies to quadric-patch and cubic-patch");
     if (a->kind.empty()) throw InputError("--model KIND or --init MODEL.json is required");
     const PrimitiveFitOptions options = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);

@@ -11,6 +11,7 @@
 #include "datasets/oriented_cloud.h"
 #include "fit/fit_report.h"
 #include "fit/patch_fitter.h"
+#include "fit/shape_starts.h"
 #include "fit/tree_fitter.h"
 #include "model/model_json.h"
 
@@ -90,6 +91,42 @@ int RunTreeFit(const ModelFitRequest& request) {
   Finish(request, r.model, report);
   std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n", cloud.size(), r.inliers,
               r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
+  return 0;
+}
+
+bool IsShapeKind(const std::string& kind) { return IsShapeStartKind(kind); }
+
+int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
+  std::string normals;
+  const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
+  const ShapeStart start = RobustShapeStart(request.kind, cloud.points, cloud.normals, seed);
+  nlohmann::json report = {{"kind", request.kind}, {"points", cloud.size()}, {"normals", normals}};
+  if (!start.success) {
+    report["success"] = false;
+    report["message"] = start.message;
+    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind << " fit failed: " << start.message
+              << "\n";
+    return 1;
+  }
+  const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, TreeFitOptions{});
+  report.update({{"success", r.success}, {"message", r.message}, {"inliers", r.inliers},
+                 {"rms_distance", r.rms}, {"sigma", r.sigma},
+                 {"mean_normal_angle_deg", r.mean_normal_angle_deg}, {"iterations", r.iterations},
+                 {"seconds", r.seconds}});
+  const std::vector<std::string> names = r.model.ParameterNames();
+  for (size_t i = 0; i < names.size(); ++i) {
+    report["parameters"][names[i]] = r.model.parameters()[i];
+    report["start"][names[i]] = start.model.parameters()[i];
+  }
+  if (!r.success) {
+    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind << " fit failed: " << r.message << "\n";
+    return 1;
+  }
+  Finish(request, r.model, report);
+  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n", cloud.size(),
+              r.inliers, r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
   return 0;
 }
 

@@ -1,7 +1,9 @@
-// The two fits of `implicitfit fit` beyond single primitives:
+// The fits of `implicitfit fit` beyond single primitives:
 //   --init MODEL.json      every free parameter of a model tree (fit/tree_fitter.h)
 //   --model quadric-patch | cubic-patch [--degree k] [--convex] [--tetrahedron 12 numbers]
 //                          a Bernstein patch (fit/patch_fitter.h)
+//   --model box | paraboloid | capsule
+//                          a robust start (fit/shape_starts.h), then the tree fitter
 // Each reads the cloud, fits, writes the report (when asked) and, on success, the model file;
 // returns the exit code (0 success, 1 the fit failed or the constraint cannot be met).
 #pragma once
@@ -27,6 +29,10 @@ struct ModelFitRequest {
 };
 
 bool IsPatchKind(const std::string& kind);
+// box, paraboloid, capsule: a robust start (fit/shape_starts.h), then the tree fitter; the
+// report is the --init one plus "kind" and the start's parameters ("start").
+bool IsShapeKind(const std::string& kind);
+int RunShapeFit(const ModelFitRequest& request, unsigned seed);
 int RunTreeFit(const ModelFitRequest& request);
 int RunPatchFit(const ModelFitRequest& request);
 

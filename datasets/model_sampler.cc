@@ -14,6 +14,19 @@ using Vec = Eigen::Vector3d;
 // Grid cells along the longest side of the box for the mesh the candidates are drawn from.
 constexpr double kSamplingMeshCells = 80.0;
 
+void NodeBox(const Model& model, int index, Vec* lo, Vec* hi);
+
+// The union of the children's boxes.
+void ChildrenBox(const Model& model, const ModelNode& node, Vec* lo, Vec* hi) {
+  NodeBox(model, node.children[0], lo, hi);
+  for (size_t c = 1; c < node.children.size(); ++c) {
+    Vec l, h;
+    NodeBox(model, node.children[c], &l, &h);
+    *lo = lo->cwiseMin(l);
+    *hi = hi->cwiseMax(h);
+  }
+}
+
 void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
   const ModelNode& node = model.nodes()[index];
   const double* p = model.parameters().data() + node.first_parameter;
@@ -50,18 +63,42 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       *hi += margin;
       return;
     }
-    case NodeType::kUnion:
-    case NodeType::kIntersection:
-    case NodeType::kDifference: {
-      NodeBox(model, node.children[0], lo, hi);
-      for (size_t c = 1; c < node.children.size(); ++c) {
-        Vec l, h;
-        NodeBox(model, node.children[c], &l, &h);
-        *lo = lo->cwiseMin(l);
-        *hi = hi->cwiseMax(h);
+    case NodeType::kBox: around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm()); return;
+    case NodeType::kParaboloid: around(Vec(p[0], p[1], p[2]), 1.0); return;  // the cap |w| <= 1
+    case NodeType::kBlobs: {  // every blob's centre +- its reach (gaussian: where a e^(-b R^2) = T/4)
+      const int m = node.count;
+      const double t = std::max(std::abs(p[5 * m]), 1e-12);
+      for (int i = 0; i < m; ++i) {
+        const double a = std::abs(p[3 * m + i]), w = p[4 * m + i];
+        const double reach = node.variant == static_cast<int>(BlobKernel::kGaussian)
+                                 ? std::sqrt(std::max(std::log(4.0 * a / t), 0.0) / w)
+                                 : w;
+        const Vec c(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+        const Vec l = c - Vec::Constant(reach), h = c + Vec::Constant(reach);
+        *lo = i == 0 ? l : Vec(lo->cwiseMin(l));
+        *hi = i == 0 ? h : Vec(hi->cwiseMax(h));
       }
       return;
     }
+    case NodeType::kSkeletonOffset: {  // the skeleton's extent +- 1.05 r
+      const int m = node.count;
+      const double r = 1.05 * p[3 * m];
+      *lo = Vec(p[0], p[1], p[2]);
+      *hi = *lo;
+      for (int i = 1; i < m; ++i) {
+        *lo = lo->cwiseMin(Vec(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+        *hi = hi->cwiseMax(Vec(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+      }
+      *lo -= Vec::Constant(r);
+      *hi += Vec::Constant(r);
+      return;
+    }
+    case NodeType::kPartition:
+    case NodeType::kComplement:
+    case NodeType::kMorph:
+    case NodeType::kUnion:
+    case NodeType::kIntersection:
+    case NodeType::kDifference: ChildrenBox(model, node, lo, hi); return;
   }
 }
 

@@ -1,5 +1,6 @@
 #include "fit/tree_parameters.h"
 
+#include <ceres/manifold.h>
 #include <ceres/sphere_manifold.h>
 
 #include <algorithm>
@@ -25,9 +26,19 @@ TreeParameters::TreeParameters(const Model& model) {
       if (name == "radius" || name == "major_radius" || name == "minor_radius" || name == "radii")
         kind = Kind::kPositive;
       if (name == "half_angle") kind = Kind::kAngle;
+      if (node.type == NodeType::kBox && name == "axes") kind = Kind::kQuaternion;
+      if (name == "half_sizes") kind = Kind::kPositive;
+      if (node.type == NodeType::kBlobs && name == "widths") kind = Kind::kPositive;
+      const bool structural = node.type == NodeType::kBlobs && name == "threshold";
+      if (node.type == NodeType::kMorph && name == "t") kind = Kind::kUnitLogit;
       if (name == "delta") kind = Kind::kDeltaLog;
       if (name == "epsilon") kind = Kind::kEpsilonLogit;
-      if (is_fixed(name) || (no_epsilon && kind == Kind::kEpsilonLogit)) {
+      double scale = 1.0;
+      if (node.type == NodeType::kPartition) {
+        scale = SmallestPartitionCell(node.cuts) / 2.0;
+        kind = scale < 1e307 ? Kind::kUnitLogit : Kind::kLog;
+      }
+      if (is_fixed(name) || structural || (no_epsilon && kind == Kind::kEpsilonLogit)) {
         for (int j = 0; j < field.size; ++j) entries_[k + j].fixed_value = p[k + j];
         k += field.size;
         continue;
@@ -46,7 +57,12 @@ TreeParameters::TreeParameters(const Model& model) {
         init[0] = std::log(ratio / (1.0 - ratio));
         entries_[k].delta_flat = delta_flat;
       }
-      if (kind == Kind::kDirection) {
+      if (kind == Kind::kLog) init[0] = std::log(p[k]);
+      if (kind == Kind::kUnitLogit) {
+        const double t = std::clamp(p[k] / scale, 1e-9, 1.0 - 1e-9);
+        init[0] = std::log(t / (1.0 - t));
+      }
+      if (kind == Kind::kDirection || kind == Kind::kQuaternion) {
         double n = 0;
         for (double v : init) n += v * v;
         for (double& v : init) v /= std::sqrt(n);
@@ -56,6 +72,7 @@ TreeParameters::TreeParameters(const Model& model) {
         entries_[k + j].block = block;
         entries_[k + j].offset = j;
         entries_[k + j].kind = kind;
+        entries_[k + j].scale = scale;
         if (kind == Kind::kEpsilonLogit) entries_[k + j].delta_flat = delta_flat;
       }
       blocks_.push_back(init);
@@ -72,6 +89,7 @@ void TreeParameters::Configure(ceres::Problem* problem) {
     if (!problem->HasParameterBlock(block)) continue;
     switch (block_kinds_[b]) {
       case Kind::kDirection: problem->SetManifold(block, new ceres::SphereManifold<3>()); break;
+      case Kind::kQuaternion: problem->SetManifold(block, new ceres::QuaternionManifold()); break;
       case Kind::kPositive:
         for (int j = 0; j < block_sizes_[b]; ++j) problem->SetParameterLowerBound(block, j, 1e-12);
         break;

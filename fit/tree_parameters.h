@@ -4,6 +4,14 @@
 //   radius, major_radius, minor_radius,
 //   radii                               lower bound 0
 //   half_angle                          bounds (0, pi/2)
+//   box axes (a quaternion w, x, y, z)  ceres::QuaternionManifold
+//   box half_sizes                      lower bound 0
+//   morph t                             t = 1 / (1 + exp(-b)), so 0 < t < 1 for every b
+//   blobs widths                        lower bound 0
+//   blobs threshold                     never fitted (it fixes the scale of f)
+//   partition epsilon                   eps = (w_min / 2) / (1 + exp(-b)), w_min the narrowest
+//                                       finite cell, so every iterate keeps cells >= 2 eps
+//                                       (no finite cell: eps = exp(b))
 //   delta, epsilon of a blend           reparameterised so that 0 < epsilon <= delta holds for
 //                                       every value of the free variables:
 //                                         delta = exp(a),  epsilon = delta / (1 + exp(-b))
@@ -45,12 +53,15 @@ class TreeParameters {
   int RestartCollapsedEpsilons(double min_ratio);
 
  private:
-  enum class Kind { kPlain, kDirection, kPositive, kAngle, kDeltaLog, kEpsilonLogit };
+  enum class Kind {
+    kPlain, kDirection, kPositive, kAngle, kDeltaLog, kEpsilonLogit, kQuaternion, kUnitLogit, kLog
+  };
   struct Entry {  // one flat parameter
     int block = -1, offset = 0;   // -1: fixed
     double fixed_value = 0.0;
     Kind kind = Kind::kPlain;
     int delta_flat = -1;          // kEpsilonLogit / kDeltaLog with fixed epsilon: the partner
+    double scale = 1.0;           // kUnitLogit: the value = scale / (1 + exp(-b))
   };
   std::vector<Entry> entries_;
   std::vector<std::vector<double>> blocks_;
@@ -69,6 +80,10 @@ void TreeParameters::ToFlat(T const* const* blocks, T* flat) const {
     } else if (e.kind == Kind::kDeltaLog) {
       flat[i] = exp(blocks[e.block][e.offset]);
       if (e.delta_flat >= 0) flat[i] += T(entries_[e.delta_flat].fixed_value);  // epsilon fixed
+    } else if (e.kind == Kind::kUnitLogit) {
+      flat[i] = e.scale / (1.0 + exp(-blocks[e.block][e.offset]));
+    } else if (e.kind == Kind::kLog) {
+      flat[i] = exp(blocks[e.block][e.offset]);
     } else if (e.kind != Kind::kEpsilonLogit) {
       flat[i] = blocks[e.block][e.offset];
     }

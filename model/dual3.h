@@ -51,5 +51,9 @@ inline Dual3 sqrt(const Dual3& x) {
 inline Dual3 sin(const Dual3& x) { return Dual3(std::sin(x.a), std::cos(x.a) * x.v); }
 inline Dual3 cos(const Dual3& x) { return Dual3(std::cos(x.a), -std::sin(x.a) * x.v); }
 inline Dual3 abs(const Dual3& x) { return x.a < 0.0 ? -x : x; }
+inline Dual3 exp(const Dual3& x) {
+  const double e = std::exp(x.a);
+  return Dual3(e, e * x.v);
+}
 
 }  // namespace implicitfit

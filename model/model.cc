@@ -28,6 +28,15 @@ const std::vector<TypeInfo>& Types() {
       {NodeType::kUnion, "union", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kIntersection, "intersection", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kDifference, "difference", {{"delta", 1}, {"epsilon", 1}}},
+      {NodeType::kBox, "box", {{"center", 3}, {"axes", 4}, {"half_sizes", 3}}},
+      {NodeType::kComplement, "complement", {}},
+      {NodeType::kMorph, "morph", {{"t", 1}}},
+      {NodeType::kParaboloid, "paraboloid", {{"vertex", 3}, {"axis", 3}, {"curvature", 1}}},
+      {NodeType::kBlobs,
+       "blobs",
+       {{"centers", -3}, {"weights", -1}, {"widths", -1}, {"threshold", 1}}},
+      {NodeType::kSkeletonOffset, "skeleton_offset", {{"skeleton", -3}, {"radius", 1}}},
+      {NodeType::kPartition, "partition", {{"epsilon", 1}}},
   };
   return types;
 }
@@ -48,6 +57,7 @@ std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
   std::vector<ParameterField> fields = ParameterFieldsOf(node.type);
   for (ParameterField& field : fields)
     if (field.size == 0) field.size = node.num_parameters;  // the one per-node field
+    else if (field.size < 0) field.size *= -node.count;        // per element
   return fields;
 }
 
@@ -65,9 +75,20 @@ bool IsOperator(NodeType type) {
          type == NodeType::kDifference;
 }
 
+bool IsComposite(NodeType type) {
+  return type == NodeType::kComplement || type == NodeType::kMorph;
+}
+
+// Children a composite node takes (-1: any number >= 1).
+static int CompositeArity(NodeType type) {
+  if (type == NodeType::kComplement) return 1;
+  if (type == NodeType::kMorph) return 2;
+  return -1;
+}
+
 int NumParametersOf(NodeType type) {
   int n = 0;
-  for (const ParameterField& field : InfoOf(type).fields) n += field.size;
+  for (const ParameterField& field : InfoOf(type).fields) n += std::max(field.size, 0);
   return n;
 }
 
@@ -81,9 +102,12 @@ int Model::AddNode(ModelNode node, const std::vector<double>& parameters) {
 }
 
 int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, std::string name) {
-  if (IsOperator(type)) throw std::invalid_argument("AddPrimitive: operator type");
+  if (IsOperator(type) || IsComposite(type))
+    throw std::invalid_argument("AddPrimitive: operator type");
   if (type == NodeType::kBernsteinPatch)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
+  if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset || type == NodeType::kPartition)
+    throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset / AddPartition");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -91,6 +115,96 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
   node.type = type;
   node.name = std::move(name);
   return AddNode(std::move(node), parameters);
+}
+
+int Model::AddComposite(NodeType type, std::vector<int> children,
+                        const std::vector<double>& parameters, std::string name) {
+  if (!IsComposite(type)) throw std::invalid_argument("AddComposite: not a composite type");
+  const int arity = CompositeArity(type);
+  if (children.empty() || (arity > 0 && static_cast<int>(children.size()) != arity))
+    throw std::invalid_argument(std::string("AddComposite: ") + NodeTypeName(type) + " takes " +
+                                std::to_string(arity) + " children");
+  for (int c : children)
+    if (c < 0 || c >= static_cast<int>(nodes_.size()))
+      throw std::invalid_argument("AddComposite: child index out of range");
+  if (static_cast<int>(parameters.size()) != NumParametersOf(type))
+    throw std::invalid_argument(std::string("AddComposite: ") + NodeTypeName(type) + " takes " +
+                                std::to_string(NumParametersOf(type)) + " parameters");
+  ModelNode node;
+  node.type = type;
+  node.name = std::move(name);
+  node.children = std::move(children);
+  const int index = AddNode(std::move(node), parameters);
+  root_ = index;  // as for operators: the node added last is the natural root
+  return index;
+}
+
+int Model::AddPartition(std::vector<std::vector<double>> cuts, double epsilon, int order,
+                        std::vector<int> children, std::string name) {
+  if (cuts.size() != 3) throw std::invalid_argument("AddPartition: cuts for x, y and z");
+  if (!(epsilon > 0.0)) throw std::invalid_argument("AddPartition: epsilon must be > 0");
+  if (order < 0 || order > UnitStep::kMaxOrder) throw std::invalid_argument("AddPartition: order");
+  size_t cells = 1;
+  for (const std::vector<double>& c : cuts) {
+    for (size_t i = 1; i < c.size(); ++i)
+      if (!(c[i] > c[i - 1])) throw std::invalid_argument("AddPartition: cuts must increase");
+    cells *= c.size() + 1;
+  }
+  if (SmallestPartitionCell(cuts) < 2.0 * epsilon)
+    throw std::invalid_argument("AddPartition: a cell is narrower than 2 epsilon");
+  if (children.size() != cells)
+    throw std::invalid_argument("AddPartition: needs " + std::to_string(cells) + " children");
+  for (int c : children)
+    if (c < 0 || c >= static_cast<int>(nodes_.size()))
+      throw std::invalid_argument("AddPartition: child index out of range");
+  ModelNode node;
+  node.type = NodeType::kPartition;
+  node.name = std::move(name);
+  node.children = std::move(children);
+  node.order = order;
+  node.cuts = std::move(cuts);
+  const int index = AddNode(std::move(node), {epsilon});
+  root_ = index;
+  return index;
+}
+
+int Model::AddBlobs(BlobKernel kernel, int order, const std::vector<double>& centers,
+                    const std::vector<double>& weights, const std::vector<double>& widths,
+                    double threshold, std::string name) {
+  const size_t m = weights.size();
+  if (m == 0 || centers.size() != 3 * m || widths.size() != m)
+    throw std::invalid_argument("AddBlobs: need m >= 1 weights, 3 m centre coordinates, m widths");
+  if (kernel == BlobKernel::kUnitStep && (order < 1 || order > UnitStep::kMaxOrder))
+    throw std::invalid_argument("AddBlobs: the h_n kernel needs an order 1.." +
+                                std::to_string(UnitStep::kMaxOrder));
+  ModelNode node;
+  node.type = NodeType::kBlobs;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.variant = static_cast<int>(kernel);
+  node.order = kernel == BlobKernel::kUnitStep ? order : 0;
+  std::vector<double> p = centers;
+  p.insert(p.end(), weights.begin(), weights.end());
+  p.insert(p.end(), widths.begin(), widths.end());
+  p.push_back(threshold);
+  return AddNode(std::move(node), p);
+}
+
+int Model::AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
+                             std::string name) {
+  const size_t m = points.size() / 3;
+  if (m == 0 || points.size() != 3 * m ||
+      (kind == SkeletonKind::kSegments && m % 2 != 0) || (kind == SkeletonKind::kPolyline && m < 2))
+    throw std::invalid_argument("AddSkeletonOffset: points (3 numbers each), two per segment, "
+                                ">= 2 for a polyline");
+  ModelNode node;
+  node.type = NodeType::kSkeletonOffset;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.variant = static_cast<int>(kind);
+  std::vector<double> p = points;
+  p.push_back(radius);
+  return AddNode(std::move(node), p);
 }
 
 int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,

@@ -18,12 +18,18 @@
 #include <vector>
 
 #include "model/bernstein_patch.h"
+#include "model/blobs.h"
+#include "model/box.h"
 #include "model/cone.h"
 #include "model/convex_smooth_ops.h"
 #include "model/cylinder.h"
 #include "model/ellipsoid.h"
 #include "model/plane.h"
+#include "model/morph.h"
+#include "model/paraboloid.h"
+#include "model/partition.h"
 #include "model/quadric.h"
+#include "model/skeleton_offset.h"
 #include "model/smooth_ops.h"
 #include "model/sphere.h"
 #include "model/torus.h"
@@ -42,15 +48,27 @@ enum class NodeType {
   kUnion,
   kIntersection,
   kDifference,
+  kBox,         // exact box SDF (model/box.h)
+  kComplement,  // -f of its one child (model/morph.h)
+  kMorph,       // t f_A + (1 - t) f_B of its two children (model/morph.h)
+  kParaboloid,  // vertex, axis, curvature (model/paraboloid.h)
+  kBlobs,           // Blinn blobs and compact kernels (model/blobs.h)
+  kSkeletonOffset,  // offsets of points, segments, polylines (model/skeleton_offset.h)
+  kPartition,       // soft space partition on a grid (model/partition.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
 const char* NodeTypeName(NodeType type);
 bool NodeTypeFromName(const std::string& name, NodeType* type);
 bool IsOperator(NodeType type);
+// Nodes with children that are not smooth CSG operators (complement, morph, ...): their
+// parameters are their own fields (ParameterFieldsOf), their children any nodes.
+bool IsComposite(NodeType type);
 // The named groups of a node type's parameters in flat-vector order, e.g. sphere:
 // center (3), radius (1). The JSON fields carry the same names. A field of size 0 has a
-// per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it.
+// per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it. A
+// negative size -s means s per element (blobs: centers -3, weights -1; skeleton_offset:
+// skeleton -3 per point), ParameterFieldsOf(node) multiplies by the node's element count.
 struct ParameterField {
   const char* name;
   int size;
@@ -75,6 +93,9 @@ struct ModelNode {
   std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
   int degree = 0;                    // bernstein_patch: k >= 1
   Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
+  int count = 0;                     // kinds with per-element fields: number of elements
+  int variant = 0;                   // blobs: BlobKernel; skeleton_offset: SkeletonKind
+  std::vector<std::vector<double>> cuts;  // partition: the cuts of x, y, z (structure)
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -90,6 +111,25 @@ class Model {
   // (DESIGN.md order); throws std::invalid_argument otherwise.
   int AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
                         const std::vector<double>& control_points, std::string name = "");
+  // A composite node (IsComposite: complement, morph, ...) over existing nodes, with its own
+  // parameters (ParameterFieldsOf); throws std::invalid_argument on a wrong count of either.
+  int AddComposite(NodeType type, std::vector<int> children, const std::vector<double>& parameters,
+                   std::string name = "");
+  // Blobs (model/blobs.h): m = weights.size() >= 1 centres (3 m numbers), weights, widths
+  // (> 0), threshold; order n of H_n for BlobKernel::kUnitStep (1..14). Throws
+  // std::invalid_argument on inconsistent sizes.
+  int AddBlobs(BlobKernel kernel, int order, const std::vector<double>& centers,
+               const std::vector<double>& weights, const std::vector<double>& widths,
+               double threshold, std::string name = "");
+  // Skeleton offset (model/skeleton_offset.h): points as 3 numbers each (segments: two end
+  // points each; polyline: >= 2 vertices), radius.
+  int AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
+                        std::string name = "");
+  // Grid partition (model/partition.h): 3 strictly increasing cut lists, every finite cell
+  // >= 2 epsilon wide, (a+1)(b+1)(c+1) children (x fastest), 0 <= order <= 14; throws
+  // std::invalid_argument otherwise.
+  int AddPartition(std::vector<std::vector<double>> cuts, double epsilon, int order,
+                   std::vector<int> children, std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -162,6 +202,37 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       }
       return acc;
     }
+    case NodeType::kBox: return BoxEvaluator::Evaluate(p, x);
+    case NodeType::kComplement: return -EvaluateNode(node.children[0], params, x);
+    case NodeType::kParaboloid: return ParaboloidEvaluator::Evaluate(p, x);
+    case NodeType::kPartition: {
+      const UnitStep& mu = UnitStep::OfOrder(node.order);
+      int cells[3][PartitionAxis::kMaxCells];
+      T factors[3][PartitionAxis::kMaxCells];
+      int counts[3];
+      for (int k = 0; k < 3; ++k)
+        counts[k] = PartitionAxis::Factors(node.cuts[k], x[k], p[0], mu, cells[k], factors[k]);
+      const int nx = static_cast<int>(node.cuts[0].size()) + 1;
+      const int ny = static_cast<int>(node.cuts[1].size()) + 1;
+      T acc = T(0.0);
+      for (int k = 0; k < counts[2]; ++k)
+        for (int j = 0; j < counts[1]; ++j)
+          for (int i = 0; i < counts[0]; ++i) {
+            const int child = cells[0][i] + nx * (cells[1][j] + ny * cells[2][k]);
+            acc += factors[0][i] * factors[1][j] * factors[2][k] *
+                   EvaluateNode(node.children[child], params, x);
+          }
+      return acc;
+    }
+    case NodeType::kBlobs:
+      return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order,
+                                      node.count, p, x);
+    case NodeType::kSkeletonOffset:
+      return SkeletonOffsetEvaluator::Evaluate(static_cast<SkeletonKind>(node.variant),
+                                               node.count, p, x);
+    case NodeType::kMorph:
+      return Morph(p[0], EvaluateNode(node.children[0], params, x),
+                   EvaluateNode(node.children[1], params, x));
   }
   return T(0.0);
 }

@@ -1,5 +1,6 @@
 #include "model/model_json.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <set>
 
@@ -87,6 +88,19 @@ std::vector<double> EllipsoidAxes(const json& node, const std::string& path) {
   return out;
 }
 
+// Box "axes" (as the ellipsoid's: 2 or 3 orthogonal rows) as the unit quaternion (w, x, y, z)
+// of the rotation whose columns are e1, e2, e1 x e2 (model/box.h).
+std::vector<double> BoxQuaternion(const json& node, const std::string& path) {
+  const std::vector<double> axes = EllipsoidAxes(node, path);
+  const Eigen::Vector3d e1 = Eigen::Vector3d(axes[0], axes[1], axes[2]).normalized();
+  Eigen::Vector3d e2(axes[3], axes[4], axes[5]);
+  e2 = (e2 - e2.dot(e1) * e1).normalized();
+  Eigen::Matrix3d r;
+  r << e1, e2, e1.cross(e2);
+  const Eigen::Quaterniond q(r);
+  return {q.w(), q.x(), q.y(), q.z()};
+}
+
 std::vector<double> PrimitiveParameters(NodeType type, const json& node, const std::string& path) {
   std::vector<double> p;
   auto append = [&p](const std::vector<double>& v) { p.insert(p.end(), v.begin(), v.end()); };
@@ -94,6 +108,14 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
     case NodeType::kPlane:
       append(Vector(node, "normal", 3, path));
       RequireNonZero(p, 0, path + ".normal");
+      if (node.contains("point")) {  // LP-2 input form: through a point; stored unit normal, offset
+        if (node.contains("offset")) Fail(path + ".point", "give either point or offset, not both");
+        const std::vector<double> x = Vector(node, "point", 3, path);
+        const double n = Norm(p);
+        for (int i = 0; i < 3; ++i) p[i] /= n;
+        p.push_back(p[0] * x[0] + p[1] * x[1] + p[2] * x[2]);
+        break;
+      }
       p.push_back(Number(node, "offset", path));
       break;
     case NodeType::kSphere:
@@ -138,10 +160,29 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
       if (largest == 0.0) Fail(path + ".coefficients", "must not all be zero");
       break;
     }
+    case NodeType::kBox: {
+      append(Vector(node, "center", 3, path));
+      append(BoxQuaternion(node, path));
+      append(Vector(node, "half_sizes", 3, path));
+      for (int i = 0; i < 3; ++i)
+        RequirePositive(p[7 + i], path + ".half_sizes[" + std::to_string(i) + "]");
+      break;
+    }
+    case NodeType::kParaboloid:
+      append(Vector(node, "vertex", 3, path));
+      append(Vector(node, "axis", 3, path));
+      RequireNonZero(p, 3, path + ".axis");
+      p.push_back(Number(node, "curvature", path));
+      break;
     case NodeType::kBernsteinPatch:
     case NodeType::kUnion:
     case NodeType::kIntersection:
     case NodeType::kDifference:
+    case NodeType::kComplement:
+    case NodeType::kMorph:
+    case NodeType::kBlobs:
+    case NodeType::kSkeletonOffset:
+    case NodeType::kPartition:
       Fail(path, "internal: not a primitive");
   }
   return p;
@@ -199,6 +240,146 @@ BlendSmoothing ReadSmoothing(const json& node, const std::string& path) {
   return BlendSmoothing::kConvex;
 }
 
+int ReadNode(const json& node, const std::string& path, int depth, Model* model);
+
+// complement {"children": [A]}; morph {"children": [A, B], "t": t in [0, 1]}.
+int ReadComposite(NodeType type, const json& node, const std::string& path, int depth,
+                  const std::string& name, Model* model) {
+  const size_t arity = type == NodeType::kComplement ? 1 : 2;
+  if (!node.contains("children") || !node.at("children").is_array() ||
+      node.at("children").size() != arity)
+    Fail(path + ".children", "must be an array of " + std::to_string(arity) + " node" +
+                                 (arity > 1 ? "s" : ""));
+  std::vector<double> parameters;
+  if (type == NodeType::kMorph) {
+    const double t = Number(node, "t", path);
+    if (!(t >= 0.0 && t <= 1.0)) Fail(path + ".t", "must be in [0, 1]");
+    parameters.push_back(t);
+  }
+  std::vector<int> children;
+  const json& ch = node.at("children");
+  for (size_t i = 0; i < ch.size(); ++i)
+    children.push_back(
+        ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", depth + 1, model));
+  return model->AddComposite(type, children, parameters, name);
+}
+
+// blobs {"centers": [[3],...], "weights": [...], "widths": [...], "threshold": T,
+//        "kernel": "gaussian" | "wyvill" | "h_n", "order": n (h_n only, default 3)}.
+int ReadBlobs(const json& node, const std::string& path, const std::string& name, Model* model) {
+  if (!node.contains("centers") || !node.at("centers").is_array() || node.at("centers").empty())
+    Fail(path + ".centers", "must be a non-empty array of points [x, y, z]");
+  const json& c = node.at("centers");
+  const size_t m = c.size();
+  std::vector<double> centers;
+  for (size_t i = 0; i < m; ++i) {
+    const std::vector<double> x = Vector(c[i], 3, path + ".centers[" + std::to_string(i) + "]");
+    centers.insert(centers.end(), x.begin(), x.end());
+  }
+  const std::vector<double> weights = Vector(node, "weights", m, path);
+  const std::vector<double> widths = Vector(node, "widths", m, path);
+  for (size_t i = 0; i < m; ++i) RequirePositive(widths[i], path + ".widths[" + std::to_string(i) + "]");
+  const double threshold = Number(node, "threshold", path);
+  if (!node.contains("kernel") || !node.at("kernel").is_string())
+    Fail(path + ".kernel", "missing or not a string (gaussian, wyvill or h_n)");
+  const std::string k = node.at("kernel").get<std::string>();
+  BlobKernel kernel;
+  if (k == "gaussian") kernel = BlobKernel::kGaussian;
+  else if (k == "wyvill") kernel = BlobKernel::kWyvill;
+  else if (k == "h_n") kernel = BlobKernel::kUnitStep;
+  else Fail(path + ".kernel", "unknown kernel '" + k + "' (gaussian, wyvill or h_n)");
+  long long order = 3;
+  if (node.contains("order")) {
+    if (kernel != BlobKernel::kUnitStep) Fail(path + ".order", "only the h_n kernel takes an order");
+    if (!node.at("order").is_number_integer()) Fail(path + ".order", "must be an integer");
+    order = node.at("order").get<long long>();
+    if (order < 1 || order > UnitStep::kMaxOrder)
+      Fail(path + ".order", "must be an integer in 1.." + std::to_string(UnitStep::kMaxOrder));
+  }
+  return model->AddBlobs(kernel, static_cast<int>(order), centers, weights, widths, threshold, name);
+}
+
+// skeleton_offset {"skeleton": {"points": [[3],...]} | {"segments": [[[3],[3]],...]} |
+//                  {"polyline": [[3],...]}, "radius": r}.
+int ReadSkeletonOffset(const json& node, const std::string& path, const std::string& name,
+                       Model* model) {
+  const std::string where = path + ".skeleton";
+  if (!node.contains("skeleton") || !node.at("skeleton").is_object() || node.at("skeleton").size() != 1)
+    Fail(where, "must be an object with exactly one of points, segments, polyline");
+  const json& s = node.at("skeleton");
+  const std::string key = s.begin().key();
+  const json& list = s.begin().value();
+  SkeletonKind kind;
+  if (key == "points") kind = SkeletonKind::kPoints;
+  else if (key == "segments") kind = SkeletonKind::kSegments;
+  else if (key == "polyline") kind = SkeletonKind::kPolyline;
+  else Fail(where + "." + key, "unknown skeleton (points, segments or polyline)");
+  const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
+  if (!list.is_array() || list.size() < least)
+    Fail(where + "." + key, "must be an array of at least " + std::to_string(least) +
+                                (kind == SkeletonKind::kSegments ? " segment [[3], [3]]" : " points [x, y, z]"));
+  std::vector<double> points;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string at = where + "." + key + "[" + std::to_string(i) + "]";
+    if (kind == SkeletonKind::kSegments) {
+      if (!list[i].is_array() || list[i].size() != 2) Fail(at, "must hold 2 points [x, y, z]");
+      for (size_t e = 0; e < 2; ++e) {
+        const std::vector<double> x = Vector(list[i][e], 3, at + "[" + std::to_string(e) + "]");
+        points.insert(points.end(), x.begin(), x.end());
+      }
+    } else {
+      const std::vector<double> x = Vector(list[i], 3, at);
+      points.insert(points.end(), x.begin(), x.end());
+    }
+  }
+  const double radius = Number(node, "radius", path);
+  RequirePositive(radius, path + ".radius");
+  return model->AddSkeletonOffset(kind, points, radius, name);
+}
+
+// partition {"cuts": [[x..], [y..], [z..]], "epsilon": e, "order": n, "children": [...]}:
+// strictly increasing cuts, every finite cell >= 2 epsilon wide (the partition of unity needs
+// it), one child per cell, x fastest.
+int ReadPartition(const json& node, const std::string& path, int depth, const std::string& name,
+                  Model* model) {
+  const double epsilon = Number(node, "epsilon", path);
+  RequirePositive(epsilon, path + ".epsilon");
+  if (!node.contains("order") || !node.at("order").is_number_integer())
+    Fail(path + ".order", "missing or not an integer");
+  const long long order = node.at("order").get<long long>();
+  if (order < 0 || order > UnitStep::kMaxOrder)
+    Fail(path + ".order", "must be an integer in 0.." + std::to_string(UnitStep::kMaxOrder));
+  if (!node.contains("cuts") || !node.at("cuts").is_array() || node.at("cuts").size() != 3)
+    Fail(path + ".cuts", "must hold 3 arrays of cut positions (x, y, z; each may be empty)");
+  std::vector<std::vector<double>> cuts(3);
+  size_t cells = 1;
+  const char* axis = "xyz";
+  for (size_t k = 0; k < 3; ++k) {
+    const std::string where = path + ".cuts[" + std::to_string(k) + "]";
+    const json& c = node.at("cuts")[k];
+    if (!c.is_array()) Fail(where, "must be an array of numbers");
+    cuts[k] = Vector(c, c.size(), where);
+    for (size_t i = 1; i < cuts[k].size(); ++i) {
+      const double width = cuts[k][i] - cuts[k][i - 1];
+      if (!(width > 0.0)) Fail(where + "[" + std::to_string(i) + "]", "cuts must be strictly increasing");
+      if (width < 2.0 * epsilon)
+        Fail(where + "[" + std::to_string(i) + "]",
+             std::string("the cell between ") + axis[k] + " = " + json(cuts[k][i - 1]).dump() + " and " +
+                 json(cuts[k][i]).dump() + " is " + json(width).dump() + " wide, less than 2 epsilon = " +
+                 json(2.0 * epsilon).dump() + " (the bases are a partition of unity only from 2 epsilon)");
+    }
+    cells *= cuts[k].size() + 1;
+  }
+  if (!node.contains("children") || !node.at("children").is_array() || node.at("children").size() != cells)
+    Fail(path + ".children", "must hold one node per cell: " + std::to_string(cells) + " nodes, x fastest");
+  std::vector<int> children;
+  const json& ch = node.at("children");
+  for (size_t i = 0; i < ch.size(); ++i)
+    children.push_back(
+        ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", depth + 1, model));
+  return model->AddPartition(cuts, epsilon, static_cast<int>(order), children, name);
+}
+
 std::set<std::string> AllowedKeys(NodeType type) {
   std::set<std::string> keys = {"type", "name", "fixed"};
   if (IsOperator(type)) {
@@ -207,6 +388,10 @@ std::set<std::string> AllowedKeys(NodeType type) {
     for (const ParameterField& f : ParameterFieldsOf(type)) keys.insert(f.name);
   }
   if (type == NodeType::kBernsteinPatch) keys.insert({"degree", "vertices"});
+  if (IsComposite(type)) keys.insert("children");
+  if (type == NodeType::kPlane) keys.insert("point");  // input form; written as normal, offset
+  if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
+  if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
   return keys;
 }
 
@@ -274,6 +459,14 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     model->mutable_nodes()[index].smoothing = smoothing;
   } else if (type == NodeType::kBernsteinPatch) {
     index = ReadBernsteinPatch(node, path, name, model);
+  } else if (IsComposite(type)) {
+    index = ReadComposite(type, node, path, depth, name, model);
+  } else if (type == NodeType::kBlobs) {
+    index = ReadBlobs(node, path, name, model);
+  } else if (type == NodeType::kPartition) {
+    index = ReadPartition(node, path, depth, name, model);
+  } else if (type == NodeType::kSkeletonOffset) {
+    index = ReadSkeletonOffset(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -310,6 +503,57 @@ json WriteNode(const Model& model, int index) {
     }
     out["vertices"] = vertices;
     out["control_points"] = Slice(p, node.first_parameter, node.num_parameters);
+  } else if (IsComposite(node.type)) {
+    json children = json::array();
+    for (int c : node.children) children.push_back(WriteNode(model, c));
+    out["children"] = children;
+    int k = node.first_parameter;
+    for (const ParameterField& f : ParameterFieldsOf(node.type)) {
+      out[f.name] = f.size == 1 ? json(p[k]) : Slice(p, k, f.size);
+      k += f.size;
+    }
+  } else if (node.type == NodeType::kPartition) {
+    out["cuts"] = node.cuts;
+    out["epsilon"] = p[node.first_parameter];
+    out["order"] = node.order;
+    json children = json::array();
+    for (int c : node.children) children.push_back(WriteNode(model, c));
+    out["children"] = children;
+  } else if (node.type == NodeType::kBlobs) {
+    const int b = node.first_parameter, m = node.count;
+    json centers = json::array();
+    for (int i = 0; i < m; ++i) centers.push_back(Slice(p, b + 3 * i, 3));
+    out["centers"] = centers;
+    out["weights"] = Slice(p, b + 3 * m, m);
+    out["widths"] = Slice(p, b + 4 * m, m);
+    out["threshold"] = p[b + 5 * m];
+    const BlobKernel kernel = static_cast<BlobKernel>(node.variant);
+    out["kernel"] = kernel == BlobKernel::kGaussian ? "gaussian"
+                    : kernel == BlobKernel::kWyvill ? "wyvill" : "h_n";
+    if (kernel == BlobKernel::kUnitStep) out["order"] = node.order;
+  } else if (node.type == NodeType::kSkeletonOffset) {
+    const int b = node.first_parameter, m = node.count;
+    const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
+    json list = json::array();
+    if (kind == SkeletonKind::kSegments) {
+      for (int i = 0; i < m; i += 2)
+        list.push_back(json::array({Slice(p, b + 3 * i, 3), Slice(p, b + 3 * i + 3, 3)}));
+    } else {
+      for (int i = 0; i < m; ++i) list.push_back(Slice(p, b + 3 * i, 3));
+    }
+    const char* key = kind == SkeletonKind::kPoints ? "points"
+                      : kind == SkeletonKind::kSegments ? "segments" : "polyline";
+    out["skeleton"] = json{{key, list}};
+    out["radius"] = p[b + 3 * m];
+  } else if (node.type == NodeType::kBox) {
+    const int b = node.first_parameter;
+    out["center"] = Slice(p, b, 3);
+    double e[3][3];
+    BoxEvaluator::Axes(&p[b + 3], e);
+    out["axes"] = json::array({json::array({e[0][0], e[0][1], e[0][2]}),
+                               json::array({e[1][0], e[1][1], e[1][2]}),
+                               json::array({e[2][0], e[2][1], e[2][2]})});
+    out["half_sizes"] = Slice(p, b + 7, 3);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);
