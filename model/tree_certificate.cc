@@ -52,6 +52,30 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
       r.domain_patches.push_back(index);
       return r;
     }
+    case NodeType::kBox:
+      return Leaf(TreeConvexity::kConvexFunction, "box: exact signed distance to a convex set");
+    case NodeType::kParaboloid:
+      if (p[6] >= 0.0)
+        return Leaf(TreeConvexity::kConvexFunction,
+                    "paraboloid with curvature >= 0: h + (k/2)|w|^2 is convex");
+      return Leaf(TreeConvexity::kNotCertified, "paraboloid with curvature < 0: concave");
+    case NodeType::kSkeletonOffset: {
+      // One point, one segment (or a two-vertex polyline): distance to a convex set minus r.
+      const bool one_element = node.count == 1 || (node.count == 2 && node.variant != 0);
+      if (one_element)
+        return Leaf(TreeConvexity::kConvexFunction,
+                    "skeleton_offset of one point or segment: distance to a convex set minus r");
+      return Leaf(TreeConvexity::kNotCertified,
+                  "skeleton_offset of several elements: a union of offsets, not certified");
+    }
+    case NodeType::kBlobs:
+      return Leaf(TreeConvexity::kNotCertified, "blobs: not certified");
+    case NodeType::kComplement:
+      return Leaf(TreeConvexity::kNotCertified, "complement: not certified");
+    case NodeType::kPartition:
+      return Leaf(TreeConvexity::kNotCertified,
+                  "partition: not certified (sum b_i f_i is not convex even for convex f_i)");
+    case NodeType::kMorph:
     case NodeType::kUnion:
     case NodeType::kIntersection:
     case NodeType::kDifference: break;
@@ -102,9 +126,27 @@ NodeCertificate CertifyOperator(const ModelNode& node, const std::vector<NodeCer
   return r;
 }
 
+// morph t f_A + (1 - t) f_B, t in [0, 1]: a convex combination of convex functions is convex.
+NodeCertificate CertifyMorph(const ModelNode& node, const std::vector<NodeCertificate>& all) {
+  NodeCertificate r = Leaf(TreeConvexity::kConvexFunction,
+                           "morph of convex functions: a convex combination is convex");
+  for (int c : node.children) {
+    if (all[c].convexity != TreeConvexity::kConvexFunction)
+      return Leaf(TreeConvexity::kNotCertified, "morph: needs convex functions as children");
+    for (int d : all[c].domain_patches)
+      if (std::find(r.domain_patches.begin(), r.domain_patches.end(), d) == r.domain_patches.end())
+        r.domain_patches.push_back(d);
+  }
+  return r;
+}
+
 void CertifyNode(const Model& model, int index, std::vector<NodeCertificate>* all) {
   const ModelNode& node = model.nodes()[index];
   for (int c : node.children) CertifyNode(model, c, all);
+  if (node.type == NodeType::kMorph) {
+    (*all)[index] = CertifyMorph(node, *all);
+    return;
+  }
   (*all)[index] = IsOperator(node.type) ? CertifyOperator(node, *all) : CertifyLeaf(model, index);
 }
 

@@ -11,7 +11,11 @@
 //     tetrahedron only (`domain` names it); degree 1: convex function (affine) everywhere;
 //   ellipsoid (first-order distance, not convex far from the surface), quadric with A >= 0
 //     (f = q / |grad q|): convex solid;
-//   torus, quadric with A indefinite, uncertified patch: not certified.
+//   box (exact SDF), paraboloid with curvature >= 0, skeleton_offset of one point or segment:
+//     convex function everywhere;
+//   torus, quadric with A indefinite, uncertified patch, paraboloid with curvature < 0,
+//   skeleton_offset of several elements, blobs, complement, partition: not certified.
+// morph t f_A + (1 - t) f_B of two convex functions: convex function (convex combination).
 // Operators (n = order; children fold left to right, so the rule is applied to all children):
 //   intersection, n = 0 (sharp max, any smoothing): max of convex functions is convex; the
 //     intersection of convex solids is convex;

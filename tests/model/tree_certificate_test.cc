@@ -183,3 +183,40 @@ TEST(TreeCertificate, CertifiedRandomTreesPassTheSamplingTest) {
 
 }  // namespace
 }  // namespace implicitfit
+
+namespace implicitfit {
+namespace {
+
+// The rules for box, paraboloid, skeleton offsets and morph, each checked against the sampling
+// tangent-plane test over a box around the shape (certified: 0 violations; the concave
+// paraboloid and a two-ball skeleton: not certified, and sampling finds a violation).
+TEST(TreeCertificate, NewerKindsAgreeWithSampling) {
+  TangentPlaneTestOptions o;
+  o.segments = 4000;
+  const Vec lo(-1.5, -1.5, -1.5), hi(1.5, 1.5, 1.5);
+  Model box;
+  box.AddPrimitive(NodeType::kBox, {0.1, -0.1, 0.05, 0.9, 0.1, 0.3, 0.2, 0.8, 0.5, 0.3});
+  Model bowl, cap;  // kappa > 0 convex, kappa < 0 concave
+  bowl.AddPrimitive(NodeType::kParaboloid, {0, 0, 0.2, 0.1, 0, 1, 1.5});
+  cap.AddPrimitive(NodeType::kParaboloid, {0, 0, 0.2, 0.1, 0, 1, -1.5});
+  Model capsule, two_balls;
+  capsule.AddSkeletonOffset(SkeletonKind::kSegments, {-0.5, 0.2, 0.1, 0.5, -0.3, 0.2}, 0.35);
+  two_balls.AddSkeletonOffset(SkeletonKind::kPoints, {-0.6, 0, 0, 0.6, 0, 0}, 0.45);
+  Model morph;
+  const int a = morph.AddPrimitive(NodeType::kSphere, {0, 0, 0, 0.8});
+  const int b = morph.AddPrimitive(NodeType::kBox, {0, 0, 0, 1, 0, 0, 0, 0.6, 0.6, 0.6});
+  morph.SetRoot(morph.AddComposite(NodeType::kMorph, {a, b}, {0.3}));
+  for (const Model* m : {&box, &bowl, &capsule, &morph}) {
+    EXPECT_EQ(RootClass(*m), TreeConvexity::kConvexFunction);
+    const TangentPlaneTestResult s = TangentPlaneTest(*m, lo, hi, o);
+    EXPECT_GT(s.zero_points, 100);
+    EXPECT_EQ(s.violations, 0) << s.worst_excursion;
+  }
+  for (const Model* m : {&cap, &two_balls}) {
+    EXPECT_EQ(RootClass(*m), TreeConvexity::kNotCertified);
+    EXPECT_GT(TangentPlaneTest(*m, lo, hi, o).violations, 0);
+  }
+}
+
+}  // namespace
+}  // namespace implicitfit
