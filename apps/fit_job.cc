@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "datasets/oriented_cloud.h"
+#include "datasets/normal_trust.h"
 #include "datasets/io_error.h"
 #include "model/model.h"
 
@@ -23,6 +23,25 @@ nlohmann::json Report(const PrimitiveFitResult& r, NodeType kind, size_t points,
   j["rounds"] = r.rounds;
   j["seconds"] = r.seconds;
   j["normals"] = normals;
+  j["estimator"] = EstimatorName(r.estimator);
+  j["points_only"] = r.points_only;
+  j["form"] = {{"rms", r.form.rms},
+               {"min_distance", r.form.min_distance},
+               {"max_distance", r.form.max_distance},
+               {"form_error", r.form.form_error}};
+  if (r.estimator == Estimator::kLeastSquares) j["final_step"] = r.final_step;
+  if (r.estimator == Estimator::kMinimumZone) {
+    nlohmann::json contacts = nlohmann::json::array();
+    for (size_t c = 0; c < r.zone.contacts.size(); ++c)
+      contacts.push_back({{"index", r.zone.contacts[c]}, {"side", r.zone.sides[c] > 0 ? "outer" : "inner"},
+                          {"multiplier", r.zone.multipliers[c]}});
+    j["zone"] = {{"width", r.zone.zone_width},
+                 {"optimality_verified", r.zone.optimality_verified},
+                 {"outer_contacts", r.zone.outer_contacts},
+                 {"inner_contacts", r.zone.inner_contacts},
+                 {"exchanges", r.zone.exchanges},
+                 {"contacts", contacts}};
+  }
   if (!r.parameters.empty()) {
     Model m;
     m.AddPrimitive(kind, r.parameters);
@@ -59,7 +78,7 @@ std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& te
 
 CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options) {
   std::string normals;
-  const PointCloud cloud = ReadOrientedCloud(path, &normals);
+  const PointCloud cloud = ReadCloudForPrimitiveFit(path, &normals);
   CloudFit fit;
   fit.points = cloud.size();
   fit.result = FitPrimitive(cloud.points, cloud.normals, options);
@@ -78,6 +97,11 @@ PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned se
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   return options;
+}
+
+void SetEstimatorFromArgument(const std::string& name, PrimitiveFitOptions* options) {
+  if (!EstimatorFromName(name, &options->estimator))
+    throw InputError("--estimator " + name + ": unknown (robust, least-squares, minimum-zone)");
 }
 
 }  // namespace implicitfit
