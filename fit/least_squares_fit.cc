@@ -129,10 +129,13 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
     std::copy(b.begin(), b.end(), params.begin() + offset);
     offset += static_cast<int>(b.size());
   }
-  if (!summary.IsSolutionUsable()) {
-    result.message = "least squares: " + summary.message;
-    return result;
-  }
+  // Ceres may stop on "invalid steps" at the rounding floor; its last accepted iterate stands
+  // unless it is not finite (the polishing below decides the rest).
+  for (double v : params)
+    if (!std::isfinite(v)) {
+      result.message = "least squares: " + summary.message;
+      return result;
+    }
 
   // 2. Gauss-Newton polishing in local coordinates (not with fixed fields: the local basis
   //    moves every field), accepted only while the cost does not rise.

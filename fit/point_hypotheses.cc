@@ -96,19 +96,22 @@ double CylinderForDirection(const Vec3 p[5], const Vec3& u, std::vector<double>*
 }
 
 double ConeForDirection(const Vec3 p[6], const Vec3& u_in, std::vector<double>* params) {
-  Eigen::Matrix<double, 6, 6> A;
+  // (x . u)^2 = c |x|^2 - 2 w . x + k with w = c a - (a . u) u: linear in (c, w, k) (the
+  // (x . u) term of the expansion lies in the span of x, so s = a . u is recovered from w:
+  // w . u = (c - 1) s, and a = w_perp / c + s u).
+  Eigen::Matrix<double, 6, 5> A;
   Eigen::Matrix<double, 6, 1> b;
   for (int i = 0; i < 6; ++i) {
     const double h = p[i].dot(u_in);
-    A.row(i) << 2 * h, p[i].squaredNorm(), -2 * p[i].x(), -2 * p[i].y(), -2 * p[i].z(), 1.0;
+    A.row(i) << p[i].squaredNorm(), -2 * p[i].x(), -2 * p[i].y(), -2 * p[i].z(), 1.0;
     b[i] = h * h;
   }
-  Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(A);
-  if (lu.rank() < 6) return INFINITY;
-  const Eigen::Matrix<double, 6, 1> z = lu.solve(b);
-  const double c = z[1];
+  const Eigen::Matrix<double, 5, 1> z = A.colPivHouseholderQr().solve(b);
+  const double c = z[0];
   if (!(c > 1e-6 && c < 1 - 1e-6)) return INFINITY;
-  const Vec3 apex = Vec3(z[2], z[3], z[4]) / c;
+  const Vec3 w(z[1], z[2], z[3]);
+  const double s = w.dot(u_in) / (c - 1);
+  const Vec3 apex = (w - w.dot(u_in) * u_in) / c + s * u_in;
   Vec3 u = u_in;
   double side = 0;
   for (int i = 0; i < 6; ++i) side += (p[i] - apex).dot(u);
@@ -118,23 +121,39 @@ double ConeForDirection(const Vec3 p[6], const Vec3& u_in, std::vector<double>* 
   return SumSquaredDistances(NodeType::kCone, *params, p, 6);
 }
 
+// The sample's best primitive over the direction grid: the kStarts best directions at least
+// 10 degrees apart are each refined by Gauss-Newton on the K distances; the lowest wins (one
+// start can land in another solution of the K-point problem).
 template <int K, typename Build>
 bool FromDirectionGrid(NodeType kind, const Vec3* p, Build build, std::vector<double>* params) {
+  constexpr int kStarts = 6;
+  const std::vector<Vec3>& grid = DirectionGrid();
+  std::vector<std::pair<double, int>> ranked;
+  std::vector<std::vector<double>> built(grid.size());
+  for (size_t g = 0; g < grid.size(); ++g) {
+    const double s = build(p, grid[g], &built[g]);
+    if (std::isfinite(s)) ranked.push_back({s, static_cast<int>(g)});
+  }
+  std::sort(ranked.begin(), ranked.end());
+  std::vector<int> starts;
+  for (const auto& [s, g] : ranked) {
+    bool apart = true;
+    for (int o : starts) apart = apart && std::abs(grid[g].dot(grid[o])) < std::cos(10 * M_PI / 180);
+    if (apart) starts.push_back(g);
+    if (static_cast<int>(starts.size()) == kStarts) break;
+  }
   double best = INFINITY;
-  std::vector<double> h, best_params;
-  for (const Vec3& u : DirectionGrid()) {
-    const double s = build(p, u, &h);
-    if (s < best) {
+  for (int g : starts) {
+    std::vector<double> h = built[g];
+    const double s = RefineOnPoints(kind, p, K, &h);
+    bool finite = std::isfinite(s);
+    for (double v : h) finite = finite && std::isfinite(v);
+    if (finite && s < best) {
       best = s;
-      best_params = h;
+      *params = h;
     }
   }
-  if (best_params.empty()) return false;
-  RefineOnPoints(kind, p, K, &best_params);
-  for (double v : best_params)
-    if (!std::isfinite(v)) return false;
-  *params = best_params;
-  return true;
+  return std::isfinite(best);
 }
 
 double Binomial(int n, int k) {

@@ -18,6 +18,7 @@
 #include "fit/minimal_samples.h"
 #include "fit/point_hypotheses.h"
 #include "fit/primitive_jacobians.h"
+#include "fit/primitive_tangent.h"
 
 namespace implicitfit {
 namespace {
@@ -366,6 +367,15 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     for (int i : inliers) abs_r.push_back(std::abs(f(pts[i].data(), nullptr, nullptr)));
     result.sigma = 1.4826 * Median(abs_r);
     band = std::max(options.band_sigmas * result.sigma, 1e-12);
+    if (!has_normals) {
+      // Few points: with N - k redundant residuals the median misjudges the scale (N = k + 1:
+      // one residual direction, most |f| near 0); the residual standard error sqrt(RSS/(N - k))
+      // bounds the band from below.
+      double rss = 0.0;
+      for (double v : abs_r) rss += v * v;
+      const double dof = std::max(1.0, static_cast<double>(abs_r.size()) - FreeParameterCount(kind));
+      band = std::max(band, options.band_sigmas * std::sqrt(rss / dof));
+    }
     std::vector<int> next = classify(params, band);
     // Stable: the inlier set changed by at most 0.2% (points flickering at the band's edge move
     // the solution by far less than its standard deviation).
