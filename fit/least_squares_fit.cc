@@ -16,15 +16,6 @@ namespace {
 
 constexpr int kChunk = 256;  // points per residual block
 
-double SumOfSquares(NodeType kind, const std::vector<double>& p, const std::vector<Eigen::Vector3d>& x) {
-  double s = 0;
-  for (const auto& q : x) {
-    const double d = PrimitiveSignedDistance(kind, p.data(), q.data(), nullptr);
-    s += d * d;
-  }
-  return s;
-}
-
 template <typename E>
 void AddCosts(const std::vector<Eigen::Vector3d>& x, const std::vector<int>& sizes, const std::vector<double*>& blocks,
               ceres::Problem* problem) {
@@ -138,13 +129,15 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
     }
 
   // 2. Gauss-Newton polishing in local coordinates (not with fixed fields: the local basis
-  //    moves every field), accepted only while the cost does not rise.
+  //    moves every field). Near the minimum the cost is flat to rounding, so steps are judged
+  //    by their length: taken while they shrink (quadratic convergence), until below 1e-14 of
+  //    the part size.
   result.final_step = 0.0;
   if (!any_fixed) {
     const int P = static_cast<int>(params.size()), n = static_cast<int>(x.size());
     std::vector<double> dp(P);
-    double cost = SumOfSquares(kind, params, x);
-    for (int it = 0; it < 8; ++it) {
+    double previous = INFINITY;
+    for (int it = 0; it < 10; ++it) {
       const Eigen::MatrixXd B = TangentBasis(kind, params);
       Eigen::MatrixXd J(n, k);
       Eigen::VectorXd r(n);
@@ -154,15 +147,13 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
       }
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J);
       const Eigen::VectorXd delta = -qr.solve(r);
-      result.final_step = (B * delta).norm();
-      std::vector<double> q = params;
-      Retract(kind, B, delta, &q);
-      const double c = SumOfSquares(kind, q, x);
+      const double step = (B * delta).norm();
+      result.final_step = step;
+      if (!(step < previous)) break;  // no longer shrinking: rounding level
+      Retract(kind, B, delta, &params);
       ++result.iterations;
-      if (!(c <= cost)) break;
-      params = std::move(q);
-      cost = c;
-      if (result.final_step <= 1e-13 * std::max(size, 1e-300)) break;
+      previous = step;
+      if (step <= 1e-14 * std::max(size, 1e-300)) break;
     }
   }
   if (kind == NodeType::kCylinder) {  // axis point closest to the centroid (the origin here)

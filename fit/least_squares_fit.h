@@ -6,8 +6,8 @@
 // derivatives (fit/primitive_jacobians.h, one residual per point: no compressed normal
 // equations, so nothing squares the conditioning), axes on SphereManifold<3>, tolerances at
 // the double-precision floor; then Gauss-Newton steps in local coordinates
-// (fit/primitive_tangent.h, column-pivoted QR of the Jacobian) until the step is below
-// 1e-13 of the part size. `final_step` reports the last step's length: the distance to the
+// (fit/primitive_tangent.h, column-pivoted QR of the Jacobian), taken while they shrink, until
+// one is below 1e-14 of the part size. `final_step` reports the last step's length: the distance to the
 // exact least-squares solution, to first order. Computed in a frame centred on the points.
 #pragma once
 

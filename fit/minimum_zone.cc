@@ -76,13 +76,44 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   std::vector<double> theta = start;
   TranslatePrimitive(kind, -centroid, &theta);
 
-  // Initial reference: the k + 1 largest |d_i| of the start.
+  // Initial reference: by decreasing |d_i| of the start, k points whose gradients g_i are
+  // independent, then the first further point whose null vector (step 1 below) has no zero
+  // entry: a non-degenerate reference (invertible levelled equations).
   Linearisation lin = Linearise(kind, theta, x);
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::partial_sort(order.begin(), order.begin() + m, order.end(),
-                    [&](int a, int b) { return std::abs(lin.d[a]) > std::abs(lin.d[b]); });
-  std::vector<int> S(order.begin(), order.begin() + m), sigma(m);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(lin.d[a]) > std::abs(lin.d[b]); });
+  std::vector<int> S, sigma(m);
+  {
+    auto smallest_singular = [](const Eigen::MatrixXd& M, Eigen::VectorXd* null) {
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+      if (null) *null = svd.matrixV().col(M.cols() - 1);
+      const Eigen::VectorXd sv = svd.singularValues();
+      return std::make_pair(sv[sv.size() - 1], sv[0]);
+    };
+    Eigen::MatrixXd G(k, 0);
+    for (int i : order) {
+      if (static_cast<int>(S.size()) == m) break;
+      Eigen::MatrixXd trial = G;
+      trial.conservativeResize(k, G.cols() + 1);
+      trial.col(G.cols()) = lin.g.row(i).transpose();
+      if (static_cast<int>(S.size()) < k) {
+        const auto [lo, hi] = smallest_singular(trial, nullptr);
+        if (lo > 1e-8 * hi) {
+          G = trial;
+          S.push_back(i);
+        }
+      } else {
+        Eigen::VectorXd c;
+        smallest_singular(trial, &c);
+        if (c.cwiseAbs().minCoeff() > 1e-6 * c.cwiseAbs().maxCoeff()) S.push_back(i);
+      }
+    }
+    if (static_cast<int>(S.size()) < m) {
+      result.message = "minimum zone: the points do not determine the " + std::string(NodeTypeName(kind));
+      return result;
+    }
+  }
   double h = 0;
   const double eps = 1e-15 * std::max(size, 1e-300);
   bool done = false;
@@ -130,19 +161,26 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
     const Eigen::VectorXd lambda = lu.solve(UnitLast(m));
     if (std::abs(lin.d[worst]) <= h * (1 + 1e-9) + eps) {
-      done = true;
       result.multipliers.assign(lambda.data(), lambda.data() + m);
-      break;
+      // A multiplier that turned negative after the Newton move: recompute the signs there.
+      if (lambda.minCoeff() >= -1e-9 || iteration >= 190) {
+        done = true;
+        break;
+      }
+      continue;
     }
     const int sw = lin.d[worst] >= 0 ? 1 : -1;
     Eigen::VectorXd a(m);
     a.head(k) = sw * lin.g.row(worst).transpose();
     a[k] = 1.0;
     const Eigen::VectorXd mu = lu.solve(a);
+    // Ratio test; pivots below 1e-9 of the largest are refused (a near-singular reference), ties
+    // go to the first (Bland's rule against cycling).
     int leave = -1;
     double best = INFINITY;
+    const double pivot = 1e-9 * mu.cwiseAbs().maxCoeff();
     for (int i = 0; i < m; ++i)
-      if (mu[i] > 1e-14 && lambda[i] / mu[i] < best) {
+      if (mu[i] > pivot && lambda[i] / mu[i] < best * (1 - 1e-12)) {
         best = lambda[i] / mu[i];
         leave = i;
       }
@@ -162,7 +200,7 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   result.sides = sigma;
   bool positive = true;
   for (int i = 0; i < m; ++i) {
-    positive = positive && result.multipliers[i] > 1e-12;
+    positive = positive && result.multipliers[i] >= -1e-9;
     (sigma[i] > 0 ? result.outer_contacts : result.inner_contacts) += 1;
   }
   double worst = 0;

@@ -16,7 +16,8 @@
 // hundreds to reach 1e-12 and is then ill-conditioned; the exchange ends on the exact active set
 // and yields its optimality certificate for free. Why not a generic LP solver: the LPs have
 // k + 1 <= 7 unknowns, where one exchange step is a (k+1) x (k+1) solve.
-// Start: the least-squares fit (fit/least_squares_fit.h); its k + 1 largest |d_i| seed S.
+// Start: the least-squares fit (fit/least_squares_fit.h); S is seeded by decreasing |d_i|, each
+// point kept when it raises the rank of [g_i; 1] (an invertible reference).
 // Optimality conditions checked at the end (first-order, Kuhn-Tucker for min t s.t.
 // sigma_i d_i <= t): every multiplier lambda_i > 0 with sum lambda_i sigma_i g_i = 0 and
 // sum lambda_i = 1, every point inside the zone; since the size parameter (offset, radius,
@@ -42,7 +43,7 @@ struct MinimumZoneResult {
   std::vector<int> sides;           // +1: on the outer face (d = +t), -1: on the inner face
   std::vector<double> multipliers;  // lambda_i of the contacts
   int outer_contacts = 0, inner_contacts = 0;
-  bool optimality_verified = false; // lambda_i > 0 and every |d_i| <= t (1 + 1e-9)
+  bool optimality_verified = false; // every lambda_i >= -1e-9, every |d_i| <= t (1 + 1e-9), both faces touched
   int exchanges = 0;                // reference changes
 };
 
