@@ -1,5 +1,6 @@
 // implicitfit batch INPUTS... [--manifest FILE]... --model KIND --out-dir DIR [--jobs N]
 //                  [--resume] [--shard i/N] [--seed s] [--threshold t] [--fix FIELD=V ...]
+//                  [--estimator robust|least-squares|minimum-zone]
 // Fits one primitive per cloud (apps/batch_runner.h), inputs listed as in apps/batch_inputs.h.
 // Writes DIR/<name>.model.json and DIR/<name>.report.json per input, then DIR/summary.csv
 // (DIR/summary-<i>-of-<N>.csv with --shard, so shards can share DIR), and prints a human summary
@@ -35,6 +36,7 @@ struct BatchArgs {
   bool resume = false;
   unsigned seed = 1;
   double threshold = 0.0;
+  std::string estimator = "robust";
 };
 
 // Writes the summary, prints the human summary; the exit code.
@@ -79,9 +81,11 @@ CommandAction AddBatchCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--fix", a->fixes, "Keep a parameter constant in every fit, e.g. --fix radius=2; repeatable")
       ->allow_extra_args(false);
+  cmd->add_option("--estimator", a->estimator, "robust (default), least-squares or minimum-zone, as `fit --estimator`");
   return [a]() {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
-    const PrimitiveFitOptions fit = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    PrimitiveFitOptions fit = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    SetEstimatorFromArgument(a->estimator, &fit);
 
     const std::vector<BatchInput> all = ExpandBatchInputs(a->inputs, a->manifests);
     if (all.empty()) throw InputError("no cloud files in the given inputs");

@@ -29,6 +29,7 @@ struct FitArgs {
   std::vector<double> tetrahedron;
   std::vector<int> through_vertices;
   std::vector<std::string> vertex_normals, through_edges;
+  std::string estimator = "robust";
 };
 
 }  // namespace
@@ -46,6 +47,9 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--threshold", a->threshold, "Initial inlier band (default: 1% of the bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--fix", a->fixes, "Keep a parameter constant, e.g. --fix radius=2 --fix axis=0,0,1");
+  cmd->add_option("--estimator", a->estimator,
+                  "robust (default: trimmed maximum likelihood), least-squares (orthogonal distances of every point, "
+                  "ISO 10360-6) or minimum-zone (smallest max |distance|, ISO 1101)");
   cmd->add_flag("--convex", a->convex, "Constrain the Bernstein patch to be convex (certified)")
       ->group("Bernstein patches");
   cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch)")
@@ -78,7 +82,8 @@ CommandAction AddFitCommand(CLI::App& app) {
     if (IsShapeKind(a->kind)) return RunShapeFit(request, a->seed);
     if (a->convex) throw InputError("--convex applies to quadric-patch and cubic-patch");
     if (a->kind.empty()) throw InputError("--model KIND or --init MODEL.json is required");
-    const PrimitiveFitOptions options = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    PrimitiveFitOptions options = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    SetEstimatorFromArgument(a->estimator, &options);
     const CloudFit fit = FitCloudFile(a->cloud, options);
     const PrimitiveFitResult& result = fit.result;
     if (!a->report.empty()) WriteFileAtomically(a->report, fit.report.dump(2) + "\n");
@@ -93,6 +98,12 @@ CommandAction AddFitCommand(CLI::App& app) {
     std::printf("points %zu  inliers %zu  rms %.6g  max %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
                 fit.points, result.inliers.size(), result.rms, result.max_abs, result.sigma,
                 result.mean_normal_angle_deg, result.seconds);
+    std::printf("estimator %s  form error %.6g (min %.6g, max %.6g)", EstimatorName(result.estimator),
+                result.form.form_error, result.form.min_distance, result.form.max_distance);
+    if (result.estimator == Estimator::kMinimumZone)
+      std::printf("  zone width %.6g, contacts %d outer / %d inner", result.zone.zone_width,
+                  result.zone.outer_contacts, result.zone.inner_contacts);
+    std::printf("\n");
     return 0;
   };
 }

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "datasets/oriented_cloud.h"
+#include "datasets/normal_trust.h"
 #include "datasets/io_error.h"
 #include "fit/fit_report.h"
 
@@ -32,7 +32,7 @@ std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& te
 
 CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options) {
   std::string normals;
-  const PointCloud cloud = ReadOrientedCloud(path, &normals);
+  const PointCloud cloud = ReadCloudForPrimitiveFit(path, &normals);
   CloudFit fit;
   fit.points = cloud.size();
   fit.result = FitPrimitive(cloud.points, cloud.normals, options);
@@ -51,6 +51,11 @@ PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned se
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   return options;
+}
+
+void SetEstimatorFromArgument(const std::string& name, PrimitiveFitOptions* options) {
+  if (!EstimatorFromName(name, &options->estimator))
+    throw InputError("--estimator " + name + ": unknown (robust, least-squares, minimum-zone)");
 }
 
 }  // namespace implicitfit

@@ -3,7 +3,11 @@
 // that `fit --report` writes:
 //   {"success", "message", "points", "inliers", "rms_distance", "max_distance", "sigma",
 //    "mean_normal_angle_deg", "iterations", "rounds", "seconds", "normals",
-//    "parameters": {field: value}, "standard_deviations": {field: value}}
+//    "parameters": {field: value}, "standard_deviations": {field: value},
+//    "estimator", "points_only", "form": {"rms", "min_distance", "max_distance", "form_error"},
+//    least-squares: "final_step"; minimum-zone: "zone": {"width", "optimality_verified",
+//    "outer_contacts", "inner_contacts", "contacts": [{"index", "side", "multiplier"}]}}
+// Clouds without trustworthy normals are fitted from points alone (datasets/normal_trust.h).
 // Writing the files is left to the commands.
 #pragma once
 
@@ -28,5 +32,8 @@ CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& option
 // default) and --fix FIELD=V[,V...] (e.g. "radius=2", "axis=0,0,1"); InputError when invalid.
 PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed, double threshold,
                                             const std::vector<std::string>& fixes);
+
+// --estimator robust|least-squares|minimum-zone into options; InputError for another name.
+void SetEstimatorFromArgument(const std::string& name, PrimitiveFitOptions* options);
 
 }  // namespace implicitfit

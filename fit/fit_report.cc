@@ -19,6 +19,26 @@ nlohmann::json PrimitiveFitReport(const PrimitiveFitResult& r, NodeType kind, si
   j["rounds"] = r.rounds;
   j["seconds"] = r.seconds;
   j["normals"] = normals;
+  j["estimator"] = EstimatorName(r.estimator);
+  j["points_only"] = r.points_only;
+  j["form"] = {{"rms", r.form.rms},
+               {"min_distance", r.form.min_distance},
+               {"max_distance", r.form.max_distance},
+               {"form_error", r.form.form_error}};
+  if (r.estimator == Estimator::kLeastSquares) j["final_step"] = r.final_step;
+  if (r.estimator == Estimator::kMinimumZone) {
+    nlohmann::json contacts = nlohmann::json::array();
+    for (size_t c = 0; c < r.zone.contacts.size(); ++c)
+      contacts.push_back({{"index", r.zone.contacts[c]},
+                          {"side", r.zone.sides[c] > 0 ? "outer" : "inner"},
+                          {"multiplier", r.zone.multipliers[c]}});
+    j["zone"] = {{"width", r.zone.zone_width},
+                 {"optimality_verified", r.zone.optimality_verified},
+                 {"outer_contacts", r.zone.outer_contacts},
+                 {"inner_contacts", r.zone.inner_contacts},
+                 {"exchanges", r.zone.exchanges},
+                 {"contacts", contacts}};
+  }
   if (!r.parameters.empty()) {
     Model m;
     m.AddPrimitive(kind, r.parameters);

@@ -14,10 +14,13 @@
 #include <thread>
 
 #include "fit/compressed_distance_cost.h"
+#include "fit/estimator_stage.h"
 #include "fit/minimal_samples.h"
+#include "fit/point_hypotheses.h"
 #include "fit/primitive_jacobians.h"
 #include "fit/thread_count.h"
 #include "model/median.h"
+#include "fit/primitive_tangent.h"
 
 namespace implicitfit {
 namespace {
@@ -125,6 +128,13 @@ struct Hypothesizer {
       case NodeType::kUnion:
       case NodeType::kIntersection:
       case NodeType::kDifference:
+      case NodeType::kBox:
+      case NodeType::kComplement:
+      case NodeType::kMorph:
+      case NodeType::kParaboloid:
+      case NodeType::kBlobs:
+      case NodeType::kSkeletonOffset:
+      case NodeType::kPartition:
         return false;  // no minimal-sample hypothesis (PrimitiveFitOptions::IsValid refuses them)
     }
     return false;
@@ -178,12 +188,15 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   const double* xyz = pts[0].data();
   const double tau = options.threshold > 0 ? options.threshold : 0.01 * (hi - lo).norm();
 
-  // Normals for hypotheses: given ones, or none (then only the kinds that need none could be
-  // hypothesised; all five need normals here, so the caller estimates them first).
+  // Without normals: hypotheses from points alone (fit/point_hypotheses.h).
+  const Eigen::Vector3d no_normal = Eigen::Vector3d::UnitX();
+  const double normal_cos = has_normals ? options.normal_cos : 0.0;
+  result.points_only = !has_normals;
   if (!has_normals) {
-    result.message = "the cloud has no normals (they are needed to hypothesise a " +
-                     std::string(NodeTypeName(kind)) + ")";
-    return result;
+    result.message = PointSetDegeneracy(kind, pts);
+    if (kind == NodeType::kTorus && result.message.empty())
+      result.message = "a torus needs normals: it is not hypothesised from points alone";
+    if (!result.message.empty()) return result;
   }
 
   // Fixed fields, in the recentred frame.
@@ -224,7 +237,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   // options.confidence (and after at least options.min_hypotheses).
   const int m = kind == NodeType::kPlane ? 1 : kind == NodeType::kCone ? 3 : kind == NodeType::kTorus ? 7 : 2;
   int needed = options.hypotheses;
-  for (int t = 0; t < needed; ++t) {
+  for (int t = 0; has_normals && t < needed; ++t) {
     if (!draw.Draw(&h)) continue;
     apply_fixed(&h);
     const PrimitiveDistance<E> hf(h.data());
@@ -236,6 +249,16 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
       const double w = std::min(0.999, static_cast<double>(score) / sub.size());
       const double k = std::log(1.0 - options.confidence) / std::log(1.0 - std::pow(w, m));
       if (std::isfinite(k)) needed = std::clamp(static_cast<int>(std::ceil(k)), options.min_hypotheses, options.hypotheses);
+    }
+  }
+  if (!has_normals) {
+    const PointHypothesisSearch search = BestPointHypothesis(kind, pts, tau, options.hypotheses, rng, apply_fixed);
+    best = search.parameters;
+    if (best.empty()) {
+      result.message = "no valid hypothesis from " + std::to_string(search.tried) + " subsets of " +
+                       std::to_string(FreeParameterCount(kind)) + " points (degenerate data for a " +
+                       NodeTypeName(kind) + "?)";
+      return result;
     }
   }
   if (best.empty()) {
@@ -265,7 +288,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     in.reserve(pool->size());
     const PrimitiveDistance<E> f(p.data());
     for (int i : *pool)
-      if (Kind<E>::Supports(f, pts[i], input_normals[i], limit, options.normal_cos)) in.push_back(i);
+      if (Kind<E>::Supports(f, pts[i], has_normals ? input_normals[i] : no_normal, limit, normal_cos)) in.push_back(i);
     return in;
   };
   inliers = classify(params, band);
@@ -280,7 +303,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   const int threads = ThreadCountOrDefault(options.num_threads);
   bool final_stage = pool->size() == N;
   for (int round = 0; round < options.max_rounds + 3; ++round) {
-    const size_t min_needed = std::max<size_t>(options.min_inliers, options.min_inlier_fraction * pool->size());
+    const size_t floor = has_normals ? options.min_inliers : FreeParameterCount(kind) + 1;
+    const size_t min_needed = std::max<size_t>(floor, options.min_inlier_fraction * pool->size());
     if (inliers.size() < min_needed) {
       result.message = "too few inliers: " + std::to_string(inliers.size()) + " of " + std::to_string(N) +
                        " points (need " + std::to_string(min_needed) + ")";
@@ -350,6 +374,15 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     for (int i : inliers) abs_r.push_back(std::abs(f(pts[i].data(), nullptr, nullptr)));
     result.sigma = 1.4826 * Median(abs_r);
     band = std::max(options.band_sigmas * result.sigma, 1e-12);
+    if (!has_normals) {
+      // Few points: with N - k redundant residuals the median misjudges the scale (N = k + 1:
+      // one residual direction, most |f| near 0); the residual standard error sqrt(RSS/(N - k))
+      // bounds the band from below.
+      double rss = 0.0;
+      for (double v : abs_r) rss += v * v;
+      const double dof = std::max(1.0, static_cast<double>(abs_r.size()) - FreeParameterCount(kind));
+      band = std::max(band, options.band_sigmas * std::sqrt(rss / dof));
+    }
     std::vector<int> next = classify(params, band);
     // Stable: the inlier set changed by at most 0.2% (points flickering at the band's edge move
     // the solution by far less than its standard deviation).
@@ -375,10 +408,10 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     const double r = pf(pts[i].data(), nullptr, g);
     ss += r * r;
     result.max_abs = std::max(result.max_abs, std::abs(r));
-    angle_sum += AcosUnit(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
+    if (has_normals) angle_sum += AcosUnit(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
   }
   result.rms = std::sqrt(ss / inliers.size());
-  result.mean_normal_angle_deg = angle_sum / inliers.size();
+  result.mean_normal_angle_deg = has_normals ? angle_sum / inliers.size() : -1.0;
 
   if (options.compute_covariance && problem) {
     ceres::Covariance::Options cov_options;
@@ -482,19 +515,28 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     return result;
   }
   switch (options.kind) {
-    case NodeType::kPlane: return Fit<PlaneEvaluator>(points, normals, options);
-    case NodeType::kSphere: return Fit<SphereEvaluator>(points, normals, options);
-    case NodeType::kCylinder: return Fit<CylinderEvaluator>(points, normals, options);
-    case NodeType::kCone: return Fit<ConeEvaluator>(points, normals, options);
-    case NodeType::kTorus: return Fit<TorusEvaluator>(points, normals, options);
+    case NodeType::kPlane: result = Fit<PlaneEvaluator>(points, normals, options); break;
+    case NodeType::kSphere: result = Fit<SphereEvaluator>(points, normals, options); break;
+    case NodeType::kCylinder: result = Fit<CylinderEvaluator>(points, normals, options); break;
+    case NodeType::kCone: result = Fit<ConeEvaluator>(points, normals, options); break;
+    case NodeType::kTorus: result = Fit<TorusEvaluator>(points, normals, options); break;
     case NodeType::kEllipsoid:
     case NodeType::kQuadric:
     case NodeType::kBernsteinPatch:
     case NodeType::kUnion:
     case NodeType::kIntersection:
-    case NodeType::kDifference: break;
+    case NodeType::kDifference:
+    case NodeType::kBox:
+    case NodeType::kComplement:
+    case NodeType::kMorph:
+    case NodeType::kParaboloid:
+    case NodeType::kBlobs:
+    case NodeType::kSkeletonOffset:
+    case NodeType::kPartition:
+      result.message = std::string("unsupported kind: ") + NodeTypeName(options.kind);
+      return result;
   }
-  result.message = std::string("unsupported kind: ") + NodeTypeName(options.kind);
+  FinishWithEstimator(points, options, &result);
   return result;
 }
 

@@ -14,6 +14,11 @@
 //    first on a random working subset of the points, then on all of them.
 //    Axes and normals live on ceres::SphereManifold<3>; radii are bounded below by 0 and the
 //    cone angle to (0, pi/2) inside the solver (never clipped afterwards).
+// Without normals (a coordinate-measuring machine's points, or estimated normals the reader did
+// not trust: datasets/sparse_cloud.h) the hypotheses come from k points alone
+// (fit/point_hypotheses.h, k the free parameter count), every k-subset when there are at most
+// `hypotheses` of them, and k + 1 inliers suffice. options.estimator then sets the final
+// criterion over every point (fit/estimator.h).
 // 3. Parameter standard deviations from ceres::Covariance at the solution, scaled by the
 //    residual variance RSS / (N - dof).
 // Everything is computed in a frame centred on the cloud's centroid, so UTM-sized coordinates
@@ -25,6 +30,9 @@
 #include <string>
 #include <vector>
 
+#include "fit/estimator.h"
+#include "fit/least_squares_fit.h"
+#include "fit/minimum_zone.h"
 #include "model/model.h"
 
 namespace implicitfit {
@@ -42,11 +50,12 @@ struct PrimitiveFitOptions {
   double band_sigmas = 3.0;              // final inlier band in units of the estimated sigma
   int max_rounds = 8;                    // refit / re-classify rounds
   double stable_fraction = 0.002;        // inlier set "stable" when at most this fraction changed
-  int min_inliers = 20;                  // fewer: the fit fails
+  int min_inliers = 20;                  // fewer: the fit fails (from points alone: k + 1)
   double min_inlier_fraction = 0.02;     // fewer than this fraction of the points: the fit fails
   int num_threads = 0;                   // Ceres threads; 0 = hardware concurrency
   bool compute_covariance = true;        // parameter standard deviations
   std::map<std::string, std::vector<double>> fixed;  // field name -> value kept constant
+  Estimator estimator = Estimator::kRobust;  // final criterion (fit/estimator.h)
 
   // False (with a reason) for an invalid combination.
   bool IsValid(std::string* error) const;
@@ -64,6 +73,11 @@ struct PrimitiveFitResult {
   int iterations = 0;                    // Ceres iterations, all rounds
   int rounds = 0;
   double seconds = 0.0;
+  bool points_only = false;              // hypotheses from points alone (no normals given)
+  Estimator estimator = Estimator::kRobust;  // which estimator produced `parameters`
+  FormFigures form;                      // every point's distances to the result
+  double final_step = 0.0;               // least-squares: last Gauss-Newton step length
+  MinimumZoneResult zone;                // minimum-zone: width, contacts, multipliers
 
   // The fitted primitive as a one-node model.
   Model ToModel(NodeType kind) const;

@@ -1,0 +1,170 @@
+// implicitfit vs PCL on coordinate-measuring-machine sets (tests/support/cmm_reference.h: 10 mm
+// parts ~100 mm from the origin, 6-40 points on partial arcs, 1 um lobed form error, 0.1 um
+// noise, no normals), in one run. For each set: the independent long double least-squares
+// reference; implicitfit `--estimator least-squares` (and minimum-zone, timed); PCL's sample
+// consensus with its coefficient refinement (SACSegmentation + setOptimizeCoefficients: float
+// points and coefficients, as a user would call it; cylinder and cone need normals, estimated by
+// pcl::NormalEstimation from the 8 nearest points). Prints a Markdown table: median time per
+// fit, the median and largest geometric difference to the reference (mm; angles times the
+// part size), failures (least squares, minimum zone not certified, PCL nothing found or > 1 mm off).
+//
+// Usage: cmm_comparison [--sizes 6,10,20,40] [--seeds 20] [--kinds plane,sphere,cylinder,cone]
+#include <pcl/ModelCoefficients.h>
+#include <pcl/features/normal_3d.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/sac_segmentation.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fit/primitive_fitter.h"
+#include "support/cmm_reference.h"
+
+namespace {
+
+using namespace implicitfit;
+using testsupport::CmmKind;
+using testsupport::CmmSet;
+
+NodeType KindOf(CmmKind k) {
+  switch (k) {
+    case CmmKind::kPlane: return NodeType::kPlane;
+    case CmmKind::kSphere: return NodeType::kSphere;
+    case CmmKind::kCylinder: return NodeType::kCylinder;
+    default: return NodeType::kCone;
+  }
+}
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// PCL's fit in implicitfit's layout; empty when it found nothing.
+std::vector<double> RunPcl(const CmmSet& s) {
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : s.points) xyz->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  pcl::ModelCoefficients c;
+  pcl::PointIndices inliers;
+  const double threshold = 0.005;  // 5 um: the form error and noise with margin
+  if (s.kind == CmmKind::kPlane || s.kind == CmmKind::kSphere) {
+    pcl::SACSegmentation<pcl::PointXYZ> seg;
+    seg.setOptimizeCoefficients(true);
+    seg.setMethodType(pcl::SAC_RANSAC);
+    seg.setMaxIterations(1000);
+    seg.setDistanceThreshold(threshold);
+    seg.setModelType(s.kind == CmmKind::kPlane ? pcl::SACMODEL_PLANE : pcl::SACMODEL_SPHERE);
+    if (s.kind == CmmKind::kSphere) seg.setRadiusLimits(0, 100);
+    seg.setInputCloud(xyz);
+    seg.segment(inliers, c);
+  } else {
+    pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+    pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+    ne.setInputCloud(xyz);
+    ne.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+    ne.setKSearch(std::min<int>(8, static_cast<int>(s.points.size()) - 1));
+    ne.compute(*normals);
+    pcl::SACSegmentationFromNormals<pcl::PointXYZ, pcl::Normal> seg;
+    seg.setOptimizeCoefficients(true);
+    seg.setMethodType(pcl::SAC_RANSAC);
+    seg.setMaxIterations(1000);
+    seg.setDistanceThreshold(threshold);
+    seg.setNormalDistanceWeight(0.1);
+    seg.setRadiusLimits(0, 100);
+    seg.setModelType(s.kind == CmmKind::kCylinder ? pcl::SACMODEL_CYLINDER : pcl::SACMODEL_CONE);
+    if (s.kind == CmmKind::kCone) seg.setMinMaxOpeningAngle(0.05, 1.5);
+    seg.setInputCloud(xyz);
+    seg.setInputNormals(normals);
+    seg.segment(inliers, c);
+  }
+  if (c.values.empty()) return {};
+  const std::vector<float>& v = c.values;
+  if (s.kind == CmmKind::kPlane) return {v[0], v[1], v[2], -v[3]};
+  return std::vector<double>(v.begin(), v.end());
+}
+
+double Largest(const std::vector<std::pair<std::string, double>>& d) {
+  double m = 0;
+  for (const auto& e : d) m = std::max(m, std::isfinite(e.second) ? e.second : INFINITY);
+  return m;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double Max(const std::vector<double>& v) { return v.empty() ? NAN : *std::max_element(v.begin(), v.end()); }
+
+std::vector<std::string> Split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> sizes = {"6", "10", "20", "40"}, kinds = {"plane", "sphere", "cylinder", "cone"};
+  int seeds = 20;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--sizes")) sizes = Split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--kinds")) kinds = Split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "usage: %s [--sizes N,N] [--seeds S] [--kinds plane,sphere,cylinder,cone]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::printf("| kind | points | implicitfit LS ms | implicitfit MZ ms | PCL ms | implicitfit LS difference median / max (mm) "
+              "| PCL difference median / max (mm) | failures LS / MZ / PCL |\n|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& name : kinds) {
+    const CmmKind kind = name == "plane" ? CmmKind::kPlane : name == "sphere" ? CmmKind::kSphere
+                         : name == "cylinder" ? CmmKind::kCylinder : CmmKind::kCone;
+    const NodeType nk = KindOf(kind);
+    for (const std::string& size : sizes) {
+      const int n = std::max(std::atoi(size.c_str()), kind == CmmKind::kCone ? 7 : 6);
+      std::vector<double> t_ls, t_mz, t_pcl, d_ours, d_pcl;
+      int fail_ours = 0, fail_mz = 0, fail_pcl = 0;
+      for (int seed = 1; seed <= seeds; ++seed) {
+        const CmmSet s = testsupport::MakeCmmSet(kind, n, 1000 * n + seed);
+        const auto ref = testsupport::CmmReference(s).Solve();
+        PrimitiveFitOptions o;
+        o.kind = nk;
+        o.num_threads = 1;
+        o.compute_covariance = false;
+        o.estimator = Estimator::kLeastSquares;
+        auto start = std::chrono::steady_clock::now();
+        const PrimitiveFitResult ls = FitPrimitive(s.points, {}, o);
+        t_ls.push_back(1e3 * Seconds(start));
+        o.estimator = Estimator::kMinimumZone;
+        start = std::chrono::steady_clock::now();
+        const PrimitiveFitResult mz = FitPrimitive(s.points, {}, o);
+        t_mz.push_back(1e3 * Seconds(start));
+        start = std::chrono::steady_clock::now();
+        const std::vector<double> pcl = RunPcl(s);
+        t_pcl.push_back(1e3 * Seconds(start));
+        if (!mz.success) ++fail_mz;
+        if (ls.success) d_ours.push_back(Largest(testsupport::ParameterDifferences(s, ls.parameters, ref)));
+        else ++fail_ours;
+        const double dp = pcl.empty() ? INFINITY : Largest(testsupport::ParameterDifferences(s, pcl, ref));
+        if (std::isfinite(dp) && dp < 1.0) d_pcl.push_back(dp);
+        else ++fail_pcl;  // nothing found, or more than 1 mm off
+      }
+      std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2g / %.2g | %.2g / %.2g | %d / %d / %d |\n", name.c_str(), n,
+                  Median(t_ls), Median(t_mz), Median(t_pcl), Median(d_ours), Max(d_ours), Median(d_pcl), Max(d_pcl),
+                  fail_ours, fail_mz, fail_pcl);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
