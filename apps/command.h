@@ -15,5 +15,6 @@ CommandAction AddCheckCommand(CLI::App& app);
 CommandAction AddFitCommand(CLI::App& app);
 CommandAction AddSampleCommand(CLI::App& app);
 CommandAction AddBatchCommand(CLI::App& app);
+CommandAction AddDetectCommand(CLI::App& app);
 
 }  // namespace implicitfit

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   actions["check"] = AddCheckCommand(app);
   actions["sample"] = AddSampleCommand(app);
   actions["batch"] = AddBatchCommand(app);
+  actions["detect"] = AddDetectCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -47,6 +47,7 @@ struct PrimitiveFitOptions {
   int num_threads = 0;                   // Ceres threads; 0 = hardware concurrency
   bool compute_covariance = true;        // parameter standard deviations
   std::map<std::string, std::vector<double>> fixed;  // field name -> value kept constant
+  std::vector<double> initial;           // non-empty: no hypotheses, refine from these parameters
 
   // False (with a reason) for an invalid combination.
   bool IsValid(std::string* error) const;
