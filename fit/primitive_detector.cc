@@ -26,6 +26,8 @@ constexpr int kMaxCostPoints = 4000;    // points of the kind-selection cost
 constexpr int kGrowthRounds = 8;        // refit-and-regrow rounds of one candidate
 constexpr double kKeepFraction = 0.8;   // a candidate is accepted if this much is still free
 constexpr double kSimplerFraction = 0.97;  // a simpler kind explaining this much wins
+constexpr double kMaxRmsSigmas = 2.0;   // a candidate's RMS must stay under this * sigma
+constexpr double kFarFactor = 10.0;       // shapes beyond this many cloud diagonals: degenerate
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
 
 // Degrees of freedom of a kind (the BIC penalty).
@@ -177,6 +179,17 @@ class Detector {
     }
   }
 
+  // Centres, apices and radii within kFarFactor cloud diagonals of the (recentred) cloud.
+  bool Reasonable(NodeType kind, const std::vector<double>& p) const {
+    const double limit = kFarFactor * diagonal_;
+    if (kind == NodeType::kPlane) return true;
+    if (Vector3d(p[0], p[1], p[2]).norm() > limit) return false;
+    if (kind == NodeType::kSphere) return p[3] < limit;
+    if (kind == NodeType::kCylinder) return p[6] < limit;
+    if (kind == NodeType::kTorus) return p[6] < limit && p[7] < limit;
+    return true;
+  }
+
   bool Finite(const std::vector<double>& p) const {
     for (double v : p)
       if (!std::isfinite(v)) return false;
@@ -234,8 +247,12 @@ class Detector {
     }
     // The least-squares fit to the final support (the kind selection compares fitted models).
     std::vector<double> refit = best.params;
-    if (RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30) >= 0 && Finite(refit))
-      best.params = std::move(refit);
+    const double rms = RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
+    if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
+    // A right model leaves the noise (RMS ~ sigma); a wrong one that happens to cross the band
+    // (a cone through the faces at a vertex) spreads its residuals over it (RMS ~ tau / sqrt 3).
+    // Far-off (degenerate) shapes, e.g. a torus of radius 1e13 imitating a cone, are dropped too.
+    if (rms > kMaxRmsSigmas * sigma_ || !Reasonable(kind, best.params)) best.support.clear();
     return best;
   }
 
@@ -553,7 +570,7 @@ class Detector {
     });
   }
 
-  double margin_ = 0.0;
+  double margin_ = 0.0, diagonal_ = 0.0;
   std::vector<DetectedPrimitive> primitives_;
   const std::vector<int>& labels() const { return labels_; }
 
@@ -639,6 +656,11 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std:
 
   Detector detector(x, normals, neighbours, scales, result.min_points, options);
   detector.margin_ = result.threshold + 3.0 * spacing;
+  {
+    Eigen::AlignedBox3d box;
+    for (const auto& p : x) box.extend(p);
+    detector.diagonal_ = box.diagonal().norm();
+  }
   detector.Run(&result);
   result.merges = detector.Merge();
   detector.Reassign();
