@@ -13,6 +13,7 @@
 
 #include "fit/local_primitive_refit.h"
 #include "fit/minimal_samples.h"
+#include "fit/patch_hypotheses.h"
 #include "fit/primitive_fitter.h"
 #include "fit/primitive_function.h"
 
@@ -208,8 +209,19 @@ class Detector {
     int best_score = 0;
     std::vector<double> params;
     const int tries = kind == NodeType::kPlane ? std::max(4, options_.hypotheses / 3) : options_.hypotheses;
-    for (int t = 0; t < tries; ++t) {
-      if (!Hypothesis(kind, patch, rng, &h) || !Finite(h)) continue;
+    // Try 0: the fit to the whole patch (fit/patch_hypotheses.h), then minimal samples.
+    std::vector<Vector3d> px, pn;
+    for (int i : patch) px.push_back(x_[i]), pn.push_back(n_[i]);
+    for (int t = -1; t < tries; ++t) {
+      if (t < 0) {
+        const bool ok = kind == NodeType::kPlane      ? PlaneFromPatch(px, pn, &h)
+                        : kind == NodeType::kSphere   ? SphereFromPatch(px, pn, &h)
+                        : kind == NodeType::kCylinder ? CylinderFromPatch(px, pn, &h)
+                                                      : false;
+        if (!ok || !Finite(h)) continue;
+      } else if (!Hypothesis(kind, patch, rng, &h) || !Finite(h)) {
+        continue;
+      }
       const PrimitiveFunction f(kind, h);
       int score = 0;
       for (int i : patch) score += Supports(f, i);
@@ -646,7 +658,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std:
     angle.push_back(Median(a));
   }
   result.noise = 1.4826 * Median(tangent);
-  result.threshold = options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.5 * spacing);
+  result.threshold = options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
   result.normal_angle_deg = options.normal_angle_deg > 0
                                 ? options.normal_angle_deg
                                 : std::clamp(3.0 * Median(angle) * 180.0 / M_PI, 20.0, 45.0);
