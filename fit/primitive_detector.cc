@@ -462,6 +462,68 @@ class Detector {
     return merges;
   }
 
+  // The simplest allowed kind that explains at least kSimplerFraction as many of a primitive's
+  // points as its own model replaces it (a cylinder grown as a huge-radius torus, a sphere as a
+  // torus of zero major radius): hypotheses from the whole support (fit/patch_hypotheses.h; cones
+  // from minimal samples), refitted by least squares.
+  int Simplify() {
+    int changed = 0;
+    const int threads = options_.num_threads > 0 ? options_.num_threads
+                                                 : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<char> flags(primitives_.size(), 0);
+    ParallelFor(static_cast<int>(primitives_.size()), threads, [&](int k, int) {
+      DetectedPrimitive& p = primitives_[k];
+      const std::vector<int> s = Spread(p.points, kMaxRefitPoints);
+      auto explained = [&](NodeType kind, const std::vector<double>& params) {
+        const PrimitiveFunction f(kind, params);
+        int n = 0;
+        for (int i : s) n += Supports(f, i);
+        return n;
+      };
+      const int own = explained(p.kind, p.parameters);
+      std::vector<NodeType> simpler;
+      for (NodeType kind : options_.kinds)
+        if (DegreesOfFreedom(kind) < DegreesOfFreedom(p.kind)) simpler.push_back(kind);
+      std::sort(simpler.begin(), simpler.end(),
+                [](NodeType a, NodeType b) { return DegreesOfFreedom(a) < DegreesOfFreedom(b); });
+      std::vector<Vector3d> px, pn;
+      for (int i : s) px.push_back(x_[i]), pn.push_back(n_[i]);
+      std::seed_seq seq{options_.seed, 0x5eedu, static_cast<unsigned>(k)};
+      std::mt19937 rng(seq);
+      for (NodeType kind : simpler) {
+        std::vector<std::vector<double>> hypotheses;
+        std::vector<double> h;
+        if ((kind == NodeType::kPlane && PlaneFromPatch(px, pn, &h)) ||
+            (kind == NodeType::kSphere && SphereFromPatch(px, pn, &h)) ||
+            (kind == NodeType::kCylinder && CylinderFromPatch(px, pn, &h)))
+          hypotheses.push_back(h);
+        if (kind == NodeType::kCone || kind == NodeType::kSphere || kind == NodeType::kCylinder)
+          for (int t = 0; t < options_.hypotheses; ++t)
+            if (Hypothesis(kind, s, rng, &h) && Finite(h)) hypotheses.push_back(h);
+        int best = -1;
+        std::vector<double> best_params;
+        for (auto& q : hypotheses) {
+          const int n = explained(kind, q);
+          if (n > best) best = n, best_params = q;
+        }
+        if (best < 0) continue;
+        std::vector<double> refit = best_params;
+        if (RefitPrimitiveLocally(kind, x_, s, &refit, 30) >= 0 && Finite(refit) && Reasonable(kind, refit)) {
+          const int n = explained(kind, refit);
+          if (n >= best) best = n, best_params = refit;
+        }
+        if (best >= kSimplerFraction * own) {
+          p.kind = kind;
+          p.parameters = best_params;
+          flags[k] = 1;
+          break;
+        }
+      }
+    });
+    for (char f : flags) changed += f;
+    return changed;
+  }
+
   // Every point to the primitive explaining it best; supports cut to their largest component;
   // small primitives dropped; primitives ordered by size.
   void Reassign() {
@@ -674,6 +736,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std:
     detector.diagonal_ = box.diagonal().norm();
   }
   detector.Run(&result);
+  result.simplified = detector.Simplify();
   result.merges = detector.Merge();
   detector.Reassign();
   detector.Refine();
