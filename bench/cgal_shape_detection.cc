@@ -10,10 +10,12 @@ namespace implicitfit_bench {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Pwn = std::pair<Kernel::Point_3, Kernel::Vector_3>;
+// Each point carries its input index: detect() reorders the input range (CGAL's documentation of
+// set_input), and the shapes' indices refer to the reordered range.
+using Pwn = std::tuple<Kernel::Point_3, Kernel::Vector_3, std::size_t>;
 using Pwns = std::vector<Pwn>;
-using Traits = CGAL::Shape_detection::Efficient_RANSAC_traits<Kernel, Pwns, CGAL::First_of_pair_property_map<Pwn>,
-                                                             CGAL::Second_of_pair_property_map<Pwn>>;
+using Traits = CGAL::Shape_detection::Efficient_RANSAC_traits<Kernel, Pwns, CGAL::Nth_of_tuple_property_map<0, Pwn>,
+                                                             CGAL::Nth_of_tuple_property_map<1, Pwn>>;
 using Ransac = CGAL::Shape_detection::Efficient_RANSAC<Traits>;
 
 }  // namespace
@@ -26,7 +28,7 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
   Eigen::Vector3d lo = points[0], hi = points[0];
   for (size_t i = 0; i < points.size(); ++i) {
     pwn.emplace_back(Kernel::Point_3(points[i][0], points[i][1], points[i][2]),
-                     Kernel::Vector_3(normals[i][0], normals[i][1], normals[i][2]));
+                     Kernel::Vector_3(normals[i][0], normals[i][1], normals[i][2]), i);
     lo = lo.cwiseMin(points[i]);
     hi = hi.cwiseMax(points[i]);
   }
@@ -60,7 +62,7 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
     if (dynamic_cast<CGAL::Shape_detection::Torus<Traits>*>(shape.get())) kind = NodeType::kTorus;
     const int id = static_cast<int>(d.kinds.size());
     d.kinds.push_back(kind);
-    for (std::size_t i : shape->indices_of_assigned_points()) d.labels[i] = id;
+    for (std::size_t i : shape->indices_of_assigned_points()) d.labels[std::get<2>(pwn[i])] = id;
   }
   d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return d;
