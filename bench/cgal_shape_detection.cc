@@ -41,8 +41,14 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
   ransac.add_shape_factory<CGAL::Shape_detection::Cylinder<Traits>>();
   ransac.add_shape_factory<CGAL::Shape_detection::Cone<Traits>>();
   ransac.add_shape_factory<CGAL::Shape_detection::Torus<Traits>>();
+  CgalDetection d;
+  const auto in_time = [&](double) {
+    d.stopped = p.max_seconds > 0 &&
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > p.max_seconds;
+    return !d.stopped;
+  };
   if (p.defaults) {
-    ransac.detect();
+    ransac.detect(Ransac::Parameters(), in_time);
   } else {
     Ransac::Parameters params;
     params.probability = p.probability;
@@ -50,9 +56,8 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
     params.epsilon = p.epsilon_fraction * diag;
     params.cluster_epsilon = p.cluster_epsilon_fraction * diag;
     params.normal_threshold = p.normal_threshold;
-    ransac.detect(params);
+    ransac.detect(params, in_time);
   }
-  CgalDetection d;
   d.labels.assign(points.size(), -1);
   for (const auto& shape : ransac.shapes()) {
     NodeType kind = NodeType::kPlane;

@@ -16,12 +16,14 @@ struct CgalParameters {
   double epsilon_fraction = 0.01;     // epsilon = this * bbox diagonal
   double cluster_epsilon_fraction = 0.01;
   double normal_threshold = 0.9;
+  double max_seconds = 0.0;      // > 0: stop the detection after this long (CGAL's callback)
 };
 
 struct CgalDetection {
   std::vector<int> labels;                    // per point, -1 unassigned
   std::vector<implicitfit::NodeType> kinds;   // per shape
   double seconds = 0.0;
+  bool stopped = false;                       // hit max_seconds
 };
 
 CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,

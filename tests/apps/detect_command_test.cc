@@ -105,5 +105,38 @@ TEST(DetectCli, HostileInputsExit2NamingTheFileWithoutOutput) {
   EXPECT_NE(k.err.find("blob"), std::string::npos);
 }
 
+TEST(DetectCli, BatchSceneWritesSceneAndLabelsPerInputAndResumes) {
+  const std::string dir = testsupport::ScratchDir("detect_cli_batch");
+  for (unsigned seed : {4u, 5u}) {
+    GeneratedSceneOptions o;
+    o.seed = seed;
+    o.ground_points = 2000;
+    o.object_points = 600;
+    WriteXyzFile(GenerateScene(o).cloud, dir + "/s" + std::to_string(seed) + ".xyz");
+  }
+  testsupport::WriteText(dir + "/bad.xyz", "not a cloud\n");
+  const std::string command = kCli + " batch " + dir + "/s4.xyz " + dir + "/s5.xyz " + dir +
+                              "/bad.xyz --model scene --out-dir " + dir + "/out --jobs 2";
+  const auto r = RunCommand(command);
+  EXPECT_EQ(r.exit_code, 1) << r.err;  // one input failed
+  for (const std::string name : {"s4", "s5"}) {
+    const Scene scene = ReadSceneFile(dir + "/out/" + name + ".scene.json");
+    EXPECT_GE(scene.primitives.size(), 5u) << name;
+    const std::vector<int> labels = ReadLabelsFile(dir + "/out/" + name + ".labels.txt",
+                                                   static_cast<int>(scene.primitives.size()), scene.points);
+    EXPECT_EQ(static_cast<int>(labels.size()), scene.points);
+  }
+  EXPECT_FALSE(FileExists(dir + "/out/bad.scene.json"));
+  const std::string summary = testsupport::Slurp(dir + "/out/summary.csv");
+  EXPECT_NE(summary.find("s4.xyz,ok"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("bad.xyz,error"), std::string::npos) << summary;
+  // Resume: the complete inputs are skipped, the bad one retried.
+  const auto again = RunCommand(command + " --resume");
+  EXPECT_EQ(again.exit_code, 1);
+  const std::string resumed = testsupport::Slurp(dir + "/out/summary.csv");
+  EXPECT_NE(resumed.find("s4.xyz,skipped"), std::string::npos) << resumed;
+  EXPECT_NE(resumed.find("s5.xyz,skipped"), std::string::npos) << resumed;
+}
+
 }  // namespace
 }  // namespace implicitfit
