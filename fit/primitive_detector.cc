@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -30,6 +28,7 @@ constexpr double kSimplerFraction = 0.97;  // a simpler kind explaining this muc
 constexpr double kMaxRmsSigmas = 2.0;   // a candidate's RMS must stay under this * sigma
 constexpr double kFarFactor = 10.0;       // shapes beyond this many cloud diagonals: degenerate
 constexpr double kMaxNoiseToSpacing = 0.4;  // noisier than this * spacing: a volume, no surface
+constexpr int kFallbackSteps = 3;          // crease points join a primitive this close
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
 
 // Degrees of freedom of a kind (the BIC penalty).
@@ -307,13 +306,6 @@ class Detector {
         cost += std::min(r * r / (sigma_ * sigma_), cap);
       }
       cost = cost * scale + DegreesOfFreedom(kinds[k]) * std::log(static_cast<double>(all.size()));
-      if (std::getenv("IMPLICITFIT_DETECT_DEBUG"))
-      {
-        std::fprintf(stderr, "seed %d %s support %zu cost %.1f (U %zu) params", seed, NodeTypeName(kinds[k]),
-                     grown[k].support.size(), cost, all.size());
-        for (double v : grown[k].params) std::fprintf(stderr, " %.4g", v);
-        std::fprintf(stderr, "\n");
-      }
       if (cost < best_cost) best_cost = cost, best = k;
     }
     // The simplest kind that explains (within the bands) at least kSimplerFraction as many
@@ -559,16 +551,22 @@ class Detector {
         }
       }
     });
-    // Points with no agreeing normal join a neighbouring primitive that is within tau.
-    std::vector<int> queue;
+    // Points with no agreeing normal join a neighbouring primitive that is within tau, at most
+    // kFallbackSteps neighbour steps from the points with agreeing normals (the width over
+    // which estimated normals are smeared at a crease; no creeping along a tangent surface).
+    std::vector<int> queue, depth(N, 0);
     for (int i = 0; i < N; ++i)
       if (labels[i] >= 0) queue.push_back(i);
-    for (size_t h = 0; h < queue.size(); ++h)
-      for (int j : nb_[queue[h]])
-        if (labels[j] < 0 && fallback[j] == labels[queue[h]]) {
+    for (size_t h = 0; h < queue.size(); ++h) {
+      const int i = queue[h];
+      if (depth[i] >= kFallbackSteps) continue;
+      for (int j : nb_[i])
+        if (labels[j] < 0 && fallback[j] == labels[i]) {
           labels[j] = fallback[j];
+          depth[j] = depth[i] + 1;
           queue.push_back(j);
         }
+    }
     // Largest connected component of each support.
     std::vector<int> component(N, -1);
     std::vector<int> best_component(K, -1), best_size(K, 0);
