@@ -29,6 +29,7 @@ constexpr double kMaxRmsSigmas = 2.0;   // a candidate's RMS must stay under thi
 constexpr double kFarFactor = 10.0;       // shapes beyond this many cloud diagonals: degenerate
 constexpr double kMaxNoiseToSpacing = 0.4;  // noisier than this * spacing: a volume, no surface
 constexpr int kFallbackSteps = 3;          // crease points join a primitive this close
+constexpr double kIncoherentNormalDeg = 15.0;  // median neighbour normal angle of a volume
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
 
 // Degrees of freedom of a kind (the BIC penalty).
@@ -720,15 +721,19 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std:
   }
   result.noise = 1.4826 * Median(tangent);
   result.threshold = options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
-  result.normal_angle_deg = options.normal_angle_deg > 0
-                                ? options.normal_angle_deg
-                                : std::clamp(3.0 * Median(angle) * 180.0 / M_PI, 20.0, 45.0);
+  const double median_angle_deg = Median(angle) * 180.0 / M_PI;
+  result.normal_angle_deg =
+      options.normal_angle_deg > 0 ? options.normal_angle_deg : std::clamp(3.0 * median_angle_deg, 20.0, 45.0);
   if (!(result.threshold > 0)) return result;  // all points coincide
   // Points filling a volume (e.g. uniform random points) lie off any tangent plane by about half
-  // their spacing (measured: 0.58 s); sampled surfaces, even noisy scans, by far less (0.05 to
-  // 0.15 s on the benchmark clouds). Such a cloud has no surface at its sampling scale; an
-  // explicit threshold overrides this.
-  if (options.threshold <= 0 && result.noise > kMaxNoiseToSpacing * spacing) return result;
+  // their spacing (measured: 0.58 s) and their normals disagree from one neighbour to the next
+  // (median angle above 15 degrees); sampled surfaces lie far closer (0.05 to 0.15 s on the
+  // benchmark clouds), and a dense scan noisier than its spacing still has coherent normals when
+  // they come from the scanner or a larger scale. A cloud failing both has no surface at its
+  // sampling scale; an explicit threshold overrides this.
+  if (options.threshold <= 0 && result.noise > kMaxNoiseToSpacing * spacing &&
+      median_angle_deg > kIncoherentNormalDeg)
+    return result;
   const Scales scales{result.threshold, std::cos(result.normal_angle_deg * M_PI / 180.0),
                       std::clamp(result.noise, result.threshold / 10, result.threshold / 3)};
 

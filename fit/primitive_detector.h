@@ -8,8 +8,9 @@
 //   tau   the distance band: max(3 sigma, 0.1 s) unless options.threshold is given;
 //   theta the normal band: max(20 deg, 3 x the median angle between neighbouring normals),
 //         at most 45 deg.
-// A cloud whose sigma exceeds 0.4 s fills a volume (uniform random points: 0.58 s) and gives no
-// primitive unless options.threshold is given.
+// A cloud whose sigma exceeds 0.4 s and whose neighbouring normals differ by more than 15 deg
+// (median) fills a volume (uniform random points: 0.58 s, > 15 deg) and gives no primitive
+// unless options.threshold is given.
 // A point supports a primitive when |f(x)| < tau and |cos(grad f, n)| >= cos(theta).
 //
 // Candidates (local sampling, so small primitives are found among large ones): a seed point is
