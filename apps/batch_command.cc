@@ -71,7 +71,7 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("INPUTS", a->inputs, "Cloud files and directories (every supported cloud directly inside)");
   cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it); repeatable")
       ->allow_extra_args(false);  // one file per --manifest: later words stay INPUTS
-  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus")->required();
+  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus; or scene (detect every primitive of each cloud)")->required();
   cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
   cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores; under MPI one per rank)")->check(CLI::PositiveNumber);
   cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
@@ -84,7 +84,10 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("--estimator", a->estimator, "robust (default), least-squares or minimum-zone, as `fit --estimator`");
   return [a]() {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
-    PrimitiveFitOptions fit = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    const bool scene = a->kind == "scene";  // one detection per input (apps/batch_scene.cc)
+    if (scene && !a->fixes.empty()) throw InputError("--fix does not apply to --model scene");
+    PrimitiveFitOptions fit =
+        FitOptionsFromArguments(scene ? "plane" : a->kind, a->seed, scene ? 0.0 : a->threshold, a->fixes);
     SetEstimatorFromArgument(a->estimator, &fit);
 
     const std::vector<BatchInput> all = ExpandBatchInputs(a->inputs, a->manifests);
@@ -103,9 +106,13 @@ CommandAction AddBatchCommand(CLI::App& app) {
     BatchOptions options;
     options.out_dir = a->out_dir;
     options.resume = a->resume;
+    options.scene = scene;
+    options.detect.seed = a->seed;
+    options.detect.threshold = scene ? a->threshold : 0.0;
     options.jobs = ThreadCountOrDefault(a->jobs);
     options.fit = fit;
     options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
+    options.detect.num_threads = options.fit.num_threads;
 
     const std::string summary_path = (std::filesystem::path(a->out_dir) / summary_name).string();
     const auto start = std::chrono::steady_clock::now();
@@ -115,6 +122,7 @@ CommandAction AddBatchCommand(CLI::App& app) {
     if (LaunchedUnderMpi()) {
       MpiSession mpi;
       options.fit.num_threads = 1;  // the ranks are the parallelism
+      options.detect.num_threads = 1;
       const std::vector<BatchOutcome> outcomes = RunBatchOverMpi(inputs, options, on_done);
       if (mpi.rank() != 0) return 0;  // rank 0 reports (mpirun exits with its code)
       progress.Finish();

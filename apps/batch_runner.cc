@@ -73,6 +73,7 @@ const char* BatchStatusName(BatchStatus status) {
 }
 
 BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
+  if (o.scene) return ProcessSceneInput(in, o);
   BatchOutcome out;
   out.input = in.path;
   out.name = in.name;
@@ -122,6 +123,8 @@ void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::st
   for (const BatchInput& in : inputs) {
     prefixes.insert(in.name + ".model.json.tmp.");
     prefixes.insert(in.name + ".report.json.tmp.");
+    prefixes.insert(in.name + ".scene.json.tmp.");
+    prefixes.insert(in.name + ".labels.txt.tmp.");
   }
   std::error_code ec;
   std::vector<fs::path> stale;

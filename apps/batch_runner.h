@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "apps/batch_inputs.h"
+#include "fit/primitive_detector.h"
 #include "fit/primitive_fitter.h"
 
 namespace implicitfit {
@@ -50,6 +51,8 @@ struct BatchOptions {
   std::string out_dir;               // must exist
   int jobs = 1;                      // threads of the pool, >= 1
   bool resume = false;               // skip inputs whose outputs are complete
+  bool scene = false;                // `--model scene`: one detection per input (apps/detect_job.h)
+  DetectionOptions detect;           // used for every input when scene is set
 };
 
 // Called (serialised, from any pool thread) when an input is done.
@@ -61,6 +64,13 @@ std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs, const 
 
 // One input: the resume check (when options.resume), the fit and its outputs.
 BatchOutcome ProcessBatchInput(const BatchInput& input, const BatchOptions& options);
+
+// `--model scene` (apps/batch_scene.cc): <name>.scene.json, <name>.labels.txt and
+// <name>.report.json (the `detect --report` content) per input. ok: at least one primitive;
+// failed: none (report only; a stale scene and labels are removed); skipped (resume): the scene
+// parses, the labels parse with one per point of it, and the report counts its primitives.
+// inliers = points assigned to a primitive, rms = the largest primitive RMS.
+BatchOutcome ProcessSceneInput(const BatchInput& input, const BatchOptions& options);
 
 // Removes the temporaries a killed run left for these inputs in out_dir.
 void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir);

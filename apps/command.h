@@ -17,5 +17,6 @@ CommandAction AddSampleCommand(CLI::App& app);
 CommandAction AddBatchCommand(CLI::App& app);
 CommandAction AddMeshCommand(CLI::App& app);
 CommandAction AddReconstructCommand(CLI::App& app);
+CommandAction AddDetectCommand(CLI::App& app);
 
 }  // namespace implicitfit

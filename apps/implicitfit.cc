@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   actions["batch"] = AddBatchCommand(app);
   actions["mesh"] = AddMeshCommand(app);
   actions["reconstruct"] = AddReconstructCommand(app);
+  actions["detect"] = AddDetectCommand(app);
 
   try {
     app.parse(argc, argv);

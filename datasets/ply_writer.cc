@@ -40,14 +40,22 @@ void WritePlyFile(const PointCloud& cloud, const std::string& path, const std::v
                                 std::to_string(cloud.size()) + " points");
   if (cloud.has_normals() && cloud.normals.size() != cloud.size())
     throw std::invalid_argument("WritePlyFile: normals do not match the points");
+  if (!options.labels.empty() && options.labels.size() != cloud.size())
+    throw std::invalid_argument("WritePlyFile: " + std::to_string(options.labels.size()) + " labels for " +
+                                std::to_string(cloud.size()) + " points");
+  const bool has_labels = !options.labels.empty();
   const char* type = options.single ? "float" : "double";
   std::string out = "ply\nformat ";
   out += options.ascii ? "ascii" : "binary_little_endian";
   out += " 1.0\ncomment written by implicitfit\nelement vertex " + std::to_string(cloud.size()) + "\n";
   std::vector<std::string> names = {"x", "y", "z"};
   if (cloud.has_normals()) names.insert(names.end(), {"nx", "ny", "nz"});
-  if (!residuals.empty()) names.push_back("residual");
   for (const std::string& name : names) out += std::string("property ") + type + " " + name + "\n";
+  if (has_labels) out += "property int label\n";
+  if (!residuals.empty()) {
+    names.push_back("residual");
+    out += std::string("property ") + type + " residual\n";
+  }
   out += "end_header\n";
 
   const bool swap = !HostIsLittleEndian();
@@ -60,20 +68,35 @@ void WritePlyFile(const PointCloud& cloud, const std::string& path, const std::v
     if (cloud.has_normals())
       for (int k = 0; k < 3; ++k) row[3 + k] = cloud.normals[i][k];
     if (!residuals.empty()) row[width - 1] = residuals[i];
+    const size_t label_at = cloud.has_normals() ? 6 : 3;  // the label precedes the residual
+    auto append_label = [&]() {
+      if (options.ascii) {
+        out += std::to_string(options.labels[i]);
+        out += label_at == width ? '\n' : ' ';
+      } else {
+        const std::int32_t v = options.labels[i];
+        char bytes[4];
+        std::memcpy(bytes, &v, 4);
+        if (swap) std::swap(bytes[0], bytes[3]), std::swap(bytes[1], bytes[2]);
+        out.append(bytes, 4);
+      }
+    };
     for (size_t k = 0; k < width; ++k) {
+      if (has_labels && k == label_at) append_label();
       if (!std::isfinite(row[k]))
         throw std::invalid_argument("WritePlyFile: " + names[k] + " of point " + std::to_string(i) +
                                     " is NaN or infinite");
       if (options.ascii) {
         std::snprintf(text, sizeof text, options.single ? "%.9g" : "%.17g", row[k]);
         out += text;
-        out += k + 1 == width ? '\n' : ' ';
+        out += k + 1 == width && !(has_labels && label_at == width) ? '\n' : ' ';
       } else if (options.single) {
         AppendLittleEndian<float>(&out, row[k], swap);
       } else {
         AppendLittleEndian<double>(&out, row[k], swap);
       }
     }
+    if (has_labels && label_at == width) append_label();
   }
   WriteFileAtomically(path, out);
 }

@@ -237,6 +237,12 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   // options.confidence (and after at least options.min_hypotheses).
   const int m = kind == NodeType::kPlane ? 1 : kind == NodeType::kCone ? 3 : kind == NodeType::kTorus ? 7 : 2;
   int needed = options.hypotheses;
+  if (!options.initial.empty()) {  // refinement from given parameters (e.g. the detector's)
+    best = options.initial;
+    Translate(kind, &best, -centroid);
+    apply_fixed(&best);
+    needed = 0;
+  }
   for (int t = 0; has_normals && t < needed; ++t) {
     if (!draw.Draw(&h)) continue;
     apply_fixed(&h);
@@ -251,7 +257,7 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
       if (std::isfinite(k)) needed = std::clamp(static_cast<int>(std::ceil(k)), options.min_hypotheses, options.hypotheses);
     }
   }
-  if (!has_normals) {
+  if (!has_normals && options.initial.empty()) {
     const PointHypothesisSearch search = BestPointHypothesis(kind, pts, tau, options.hypotheses, rng, apply_fixed);
     best = search.parameters;
     if (best.empty()) {
@@ -467,6 +473,9 @@ bool PrimitiveFitOptions::IsValid(std::string* error) const {
     return fail(std::string("cannot fit a ") + NodeTypeName(k) + " with the primitive fitter");
   if (hypotheses < 1 || min_hypotheses < 1) return fail("hypotheses and min_hypotheses must be >= 1");
   if (!(confidence > 0 && confidence < 1)) return fail("confidence must be in (0, 1)");
+  if (!initial.empty() && static_cast<int>(initial.size()) != NumParametersOf(k))
+    return fail("initial parameters: " + std::to_string(initial.size()) + " values, a " + NodeTypeName(k) +
+                " has " + std::to_string(NumParametersOf(k)));
   if (score_subsample < 10 || working_subsample < 10) return fail("subsamples must hold >= 10 points");
   if (!(normal_cos >= 0 && normal_cos <= 1)) return fail("normal_cos must be in [0, 1]");
   if (!(band_sigmas > 0)) return fail("band_sigmas must be > 0");

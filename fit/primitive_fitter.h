@@ -56,6 +56,7 @@ struct PrimitiveFitOptions {
   bool compute_covariance = true;        // parameter standard deviations
   std::map<std::string, std::vector<double>> fixed;  // field name -> value kept constant
   Estimator estimator = Estimator::kRobust;  // final criterion (fit/estimator.h)
+  std::vector<double> initial;           // non-empty: no hypotheses, refine from these parameters
 
   // False (with a reason) for an invalid combination.
   bool IsValid(std::string* error) const;

@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <random>
 
 #include "datasets/cloud_file.h"
+#include "datasets/ground_truth.h"
 #include "datasets/io_error.h"
 #include "support/run_command.h"
 
@@ -67,6 +69,34 @@ TEST(PlyWriter, AsciiAndFloatRoundTrip) {
   ASSERT_EQ(f.size(), cloud.size());
   for (size_t i = 0; i < f.size(); ++i)
     for (int k = 0; k < 3; ++k) EXPECT_EQ(f.points[i][k], static_cast<double>(static_cast<float>(cloud.points[i][k])));
+}
+
+TEST(PlyWriter, LabelsAreAnIntPropertyBeforeTheResidual) {
+  const std::string dir = testsupport::ScratchDir("ply_writer_labels");
+  const PointCloud cloud = RandomCloud(12, true);
+  PlyWriteOptions o;
+  o.ascii = true;
+  for (int i = 0; i < 12; ++i) o.labels.push_back(i % 3 - 1);
+  const std::vector<double> residual(12, 0.25);
+  WritePlyFile(cloud, dir + "/l.ply", residual, o);
+  // The label column read by the ground-truth reader, and the points by the cloud reader.
+  EXPECT_EQ(ReadPlyIntProperty(dir + "/l.ply", "label"), o.labels);
+  CloudFileInfo info;
+  EXPECT_EQ(ReadCloudFile(dir + "/l.ply", &info).points, cloud.points);
+  EXPECT_EQ(info.ignored_properties, (std::vector<std::string>{"label", "residual"}));
+  // Binary, no residual: the label is the last 4 bytes of each record (6 doubles before it).
+  o.ascii = false;
+  WritePlyFile(cloud, dir + "/b.ply", {}, o);
+  const std::string bytes = testsupport::Slurp(dir + "/b.ply");
+  const size_t body = bytes.find("end_header\n") + 11;
+  ASSERT_EQ(bytes.size(), body + 12 * (6 * 8 + 4));
+  std::int32_t label;
+  std::memcpy(&label, bytes.data() + body + 7 * (6 * 8 + 4) + 6 * 8, 4);
+  EXPECT_EQ(label, o.labels[7]);
+  EXPECT_EQ(ReadCloudFile(dir + "/b.ply").points, cloud.points);
+  o.labels.pop_back();
+  EXPECT_THROW(WritePlyFile(cloud, dir + "/c.ply", {}, o), std::invalid_argument);
+  EXPECT_FALSE(testsupport::FileExists(dir + "/c.ply"));
 }
 
 TEST(PlyWriter, FailuresLeaveNoFile) {
