@@ -1,13 +1,14 @@
 // implicitfit reconstruct CLOUD --out MODEL.json [--scene SCENE.json] [--mesh MESH.ply]
 //                         [--report R.json] [--seed s]
 // A solid model of the scan (fit/solid_reconstruction.h) from the primitives of a scene file
-// (datasets/scene_file.h). Without --scene the primitives would come from `detect`: that step is
-// DetectPrimitives below, which refuses (exit 2) until detect is part of this build.
+// (datasets/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
+// with its defaults and the same seed (DetectPrimitives below).
 #include <nlohmann/json.hpp>
 
 #include <iostream>
 
 #include "apps/command.h"
+#include "apps/detect_job.h"
 #include "datasets/atomic_file.h"
 #include "datasets/io_error.h"
 #include "datasets/model_file.h"
@@ -25,20 +26,25 @@ struct ReconstructArgs {
   unsigned seed = 1;
 };
 
-std::vector<DetectedPrimitive> PrimitivesOfScene(const Scene& scene) {
-  std::vector<DetectedPrimitive> primitives;
+std::vector<SolidPrimitive> PrimitivesOfScene(const Scene& scene) {
+  std::vector<SolidPrimitive> primitives;
   for (const ScenePrimitive& p : scene.primitives) primitives.push_back({p.name, p.model, p.rms_distance});
   return primitives;
 }
 
-// The primitives of the cloud when no scene is given: plug `detect` in here.
-std::vector<DetectedPrimitive> DetectPrimitives(const ReconstructArgs& args, const PointCloud& /*cloud*/) {
-  throw InputError(args.cloud + ": reconstruct needs --scene SCENE.json (a scene file of `detect`, DESIGN.md): "
-                   "detection inside reconstruct is not available in this build");
+// The primitives of the cloud when no scene is given: `detect` on the same file with its
+// defaults and the given seed (apps/detect_job.h). Replaces *cloud by the cloud the detection
+// read (same points, the normals it used). Empty when nothing was detected.
+std::vector<SolidPrimitive> DetectPrimitives(const ReconstructArgs& args, PointCloud* cloud) {
+  DetectionOptions options;
+  options.seed = args.seed;
+  CloudDetection detection = DetectCloudFile(args.cloud, options);
+  *cloud = std::move(detection.cloud);
+  return PrimitivesOfScene(detection.scene);
 }
 
 nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud, const std::string& normals,
-                      const std::vector<DetectedPrimitive>& primitives) {
+                      const std::vector<SolidPrimitive>& primitives) {
   nlohmann::json j;
   j["success"] = r.success;
   j["message"] = r.message;
@@ -84,10 +90,14 @@ CommandAction AddReconstructCommand(CLI::App& app) {
     if (!a->mesh.empty() && (a->mesh.size() < 4 || a->mesh.substr(a->mesh.size() - 4) != ".ply"))
       throw InputError(a->mesh + ": unsupported mesh format (use .ply)");
     std::string normals;
-    const PointCloud cloud = ReadOrientedCloud(a->cloud, &normals);
-    std::vector<DetectedPrimitive> primitives;
+    PointCloud cloud = ReadOrientedCloud(a->cloud, &normals);
+    std::vector<SolidPrimitive> primitives;
     if (a->scene.empty()) {
-      primitives = DetectPrimitives(*a, cloud);
+      primitives = DetectPrimitives(*a, &cloud);
+      if (primitives.empty()) {
+        std::cerr << "implicitfit reconstruct: " << a->cloud << ": detect found no primitive\n";
+        return 1;
+      }
     } else {
       const Scene scene = ReadSceneFile(a->scene);
       if (scene.points > 0 && static_cast<size_t>(scene.points) != cloud.size())

@@ -59,7 +59,7 @@ double ImpliedFilletRadius(double delta, double crease_angle_rad) {
 }
 
 SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                     const std::vector<DetectedPrimitive>& primitives,
+                                     const std::vector<SolidPrimitive>& primitives,
                                      const SolidReconstructionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   SolidReconstruction out;
@@ -318,10 +318,10 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
   return out;
 }
 
-std::vector<DetectedPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points, const std::vector<Vec>& normals,
                                                      const std::vector<int>& labels,
                                                      const std::vector<NodeType>& kinds, unsigned seed) {
-  std::vector<DetectedPrimitive> primitives;
+  std::vector<SolidPrimitive> primitives;
   for (size_t k = 0; k < kinds.size(); ++k) {
     std::vector<Vec> pts, nrm;
     for (size_t i = 0; i < points.size(); ++i)

@@ -33,7 +33,7 @@
 
 namespace implicitfit {
 
-struct DetectedPrimitive {
+struct SolidPrimitive {
   std::string name;      // "p0", ...
   Model model;           // the primitive as a model (usually one node)
   double rms = 0.0;      // RMS distance of its points, 0 when unknown
@@ -78,13 +78,13 @@ struct SolidReconstruction {
 
 SolidReconstruction ReconstructSolid(const std::vector<Eigen::Vector3d>& points,
                                      const std::vector<Eigen::Vector3d>& normals,
-                                     const std::vector<DetectedPrimitive>& primitives,
+                                     const std::vector<SolidPrimitive>& primitives,
                                      const SolidReconstructionOptions& options = {});
 
 // Primitives from labelled points (labels[i] = k: point i lies on primitive k, -1: none), each
 // fitted with the primitive fitter (fit/primitive_fitter.h) as kinds[k]: the scene that `detect`
 // would give, e.g. from ground-truth labels. Throws std::runtime_error naming a failed primitive.
-std::vector<DetectedPrimitive> FitLabelledPrimitives(const std::vector<Eigen::Vector3d>& points,
+std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Eigen::Vector3d>& points,
                                                      const std::vector<Eigen::Vector3d>& normals,
                                                      const std::vector<int>& labels,
                                                      const std::vector<NodeType>& kinds, unsigned seed);

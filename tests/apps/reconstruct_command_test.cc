@@ -66,6 +66,33 @@ TEST(ReconstructCommand, RoundedBoxGivesModelMeshAndReportWithTheFillet) {
   EXPECT_NE(Slurp(dir + "/mesh.ply").find("element face "), std::string::npos);
 }
 
+// Without --scene, reconstruct runs detect on the cloud: a sharp box (six planes) sampled with
+// noise comes back as a bounded solid through its points.
+TEST(ReconstructCommand, WithoutASceneItDetectsThePrimitivesItself) {
+  const std::string dir = ScratchDir("reconstruct_detect");
+  std::string planes;
+  const double half[3] = {0.5, 0.4, 0.3};
+  for (int a = 0; a < 3; ++a)
+    for (int s = -1; s <= 1; s += 2) {
+      double n[3] = {0, 0, 0};
+      n[a] = s;
+      planes += std::string(planes.empty() ? "" : ",") + R"({"type": "plane", "normal": [)" +
+                std::to_string(n[0]) + "," + std::to_string(n[1]) + "," + std::to_string(n[2]) +
+                R"(], "offset": )" + std::to_string(half[a]) + "}";
+    }
+  WriteText(dir + "/box.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection", "delta": 0.1, "epsilon": 0.05, "order": 0, "children": [)" + planes + "]}}");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/box.json --count 6000 --noise 0.002 --seed 5 --out " + dir +
+                       "/cloud.xyz").exit_code, 0);
+  const auto r = RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --out " + dir + "/model.json --report " + dir +
+                            "/report.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(Slurp(dir + "/report.json"));
+  EXPECT_TRUE(report["bounded"].get<bool>());
+  EXPECT_GE(report["normal_sign_agreement"].get<double>(), 0.99);
+  EXPECT_LE(report["rms_distance"].get<double>(), 1.5 * 0.002);
+  EXPECT_TRUE(FileExists(dir + "/model.json"));
+}
+
 TEST(ReconstructCommand, UsageErrorsExitTwoWithoutOutput) {
   const std::string dir = ScratchDir("reconstruct_bad");
   WriteRoundedBox(dir, 500);
@@ -74,7 +101,6 @@ TEST(ReconstructCommand, UsageErrorsExitTwoWithoutOutput) {
   struct Case {
     std::string args, message;
   } cases[] = {
-      {dir + "/cloud.xyz --out " + dir + "/m.json", "--scene"},
       {dir + "/missing.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "missing.xyz"},
       {dir + "/cloud.xyz --scene " + dir + "/bad_scene.json --out " + dir + "/m.json", "bad_scene.json"},
       {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "500 points"},

@@ -41,7 +41,7 @@ void CheckReconstruction(const GeneratedSolid& solid, unsigned seed) {
     if (cloud.is_outlier[i]) inlier_labels[i] = -1;
   std::vector<NodeType> kinds;
   for (const Model& p : solid.primitives) kinds.push_back(p.nodes()[0].type);
-  const std::vector<DetectedPrimitive> scene =
+  const std::vector<SolidPrimitive> scene =
       FitLabelledPrimitives(cloud.cloud.points, cloud.cloud.normals, inlier_labels, kinds, seed);
   SolidReconstructionOptions options;
   options.seed = seed;
