@@ -33,6 +33,10 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
     case NodeType::kTorus: around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05); return;
     case NodeType::kEllipsoid: around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]})); return;
     case NodeType::kQuadric: around(Vec::Zero(), 2.0); return;
+    case NodeType::kBernsteinMesh:
+      *lo = node.grid.BoxMin();
+      *hi = node.grid.BoxMax();
+      return;
     default: {
       NodeBox(model, node.children[0], lo, hi);
       for (size_t c = 1; c < node.children.size(); ++c) {

@@ -2,6 +2,7 @@
 
 #include "model/dual3.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace implicitfit {
@@ -28,6 +29,7 @@ const std::vector<TypeInfo>& Types() {
       {NodeType::kUnion, "union", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kIntersection, "intersection", {{"delta", 1}, {"epsilon", 1}}},
       {NodeType::kDifference, "difference", {{"delta", 1}, {"epsilon", 1}}},
+      {NodeType::kBernsteinMesh, "bernstein_mesh", {{"control_points", 0}}},
   };
   return types;
 }
@@ -84,6 +86,8 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
   if (IsOperator(type)) throw std::invalid_argument("AddPrimitive: operator type");
   if (type == NodeType::kBernsteinPatch)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
+  if (type == NodeType::kBernsteinMesh)
+    throw std::invalid_argument("AddPrimitive: use AddBernsteinMesh for a bernstein_mesh");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -105,6 +109,29 @@ int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
   node.name = std::move(name);
   node.degree = degree;
   node.tetrahedron = tetrahedron;
+  return AddNode(std::move(node), control_points);
+}
+
+int Model::AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
+                            const std::vector<double>& control_points, std::string name) {
+  if (degree < 1) throw std::invalid_argument("AddBernsteinMesh: degree must be >= 1");
+  if (continuity != 0 && continuity != 1)
+    throw std::invalid_argument("AddBernsteinMesh: continuity must be 0 or 1");
+  if (!(grid.cell > 0.0) || !std::isfinite(grid.cell) || !grid.origin.allFinite())
+    throw std::invalid_argument("AddBernsteinMesh: the grid needs a finite origin and cell > 0");
+  for (int c : grid.cells)
+    if (c < 1) throw std::invalid_argument("AddBernsteinMesh: every cells entry must be >= 1");
+  const long long count = grid.NumTetrahedra() * NumBernsteinControlPoints(degree);
+  if (static_cast<long long>(control_points.size()) != count)
+    throw std::invalid_argument("AddBernsteinMesh: " + std::to_string(grid.NumTetrahedra()) +
+                                " tetrahedra of degree " + std::to_string(degree) + " take " +
+                                std::to_string(count) + " control points");
+  ModelNode node;
+  node.type = NodeType::kBernsteinMesh;
+  node.name = std::move(name);
+  node.degree = degree;
+  node.grid = grid;
+  node.continuity = continuity;
   return AddNode(std::move(node), control_points);
 }
 

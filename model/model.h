@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "model/bernstein_mesh.h"
 #include "model/bernstein_patch.h"
 #include "model/cone.h"
 #include "model/cylinder.h"
@@ -40,6 +41,7 @@ enum class NodeType {
   kUnion,
   kIntersection,
   kDifference,
+  kBernsteinMesh,  // model/bernstein_mesh.h: degree, grid, continuity; control_points
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -67,6 +69,8 @@ struct ModelNode {
   std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
   int degree = 0;                    // bernstein_patch: k >= 1
   Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
+  BernsteinGrid grid;                // bernstein_mesh: the Kuhn grid
+  int continuity = 0;                // bernstein_mesh: declared continuity, 0 or 1
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -82,6 +86,11 @@ class Model {
   // (DESIGN.md order); throws std::invalid_argument otherwise.
   int AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
                         const std::vector<double>& control_points, std::string name = "");
+  // A Bernstein mesh of degree k >= 1 over the Kuhn split of `grid`, with
+  // 6 * cubes * NumBernsteinControlPoints(k) control points; continuity is 0 or 1 (declared,
+  // checked by `check`). Throws std::invalid_argument otherwise.
+  int AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
+                       const std::vector<double>& control_points, std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -130,6 +139,7 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kQuadric: return QuadricEvaluator::Evaluate(p, x);
     case NodeType::kBernsteinPatch:
       return BernsteinPatch::Evaluate(node.degree, node.tetrahedron, p, x);
+    case NodeType::kBernsteinMesh: return BernsteinMesh::Evaluate(node.degree, node.grid, p, x);
     case NodeType::kUnion:
     case NodeType::kIntersection:
     case NodeType::kDifference: {

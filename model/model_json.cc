@@ -3,6 +3,8 @@
 #include <cmath>
 #include <set>
 
+#include "model/bernstein_mesh_json.h"
+
 namespace implicitfit {
 namespace {
 
@@ -187,6 +189,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
     for (const ParameterField& f : ParameterFieldsOf(type)) keys.insert(f.name);
   }
   if (type == NodeType::kBernsteinPatch) keys.insert({"degree", "vertices"});
+  if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
   return keys;
 }
 
@@ -241,6 +244,8 @@ int ReadNode(const json& node, const std::string& path, Model* model) {
     index = model->AddOperator(type, children, delta, epsilon, static_cast<int>(order), name);
   } else if (type == NodeType::kBernsteinPatch) {
     index = ReadBernsteinPatch(node, path, name, model);
+  } else if (type == NodeType::kBernsteinMesh) {
+    index = ReadBernsteinMeshNode(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -274,6 +279,8 @@ json WriteNode(const Model& model, int index) {
     }
     out["vertices"] = vertices;
     out["control_points"] = Slice(p, node.first_parameter, node.num_parameters);
+  } else if (node.type == NodeType::kBernsteinMesh) {
+    WriteBernsteinMeshNode(model, node, &out);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);
