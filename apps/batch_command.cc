@@ -34,6 +34,9 @@ struct BatchArgs {
   bool resume = false;
   unsigned seed = 1;
   double threshold = 0.0;
+  bool convex = false;  // Bernstein kinds (apps/fit_model_kinds.h)
+  int degree = 0, cells = 0, continuity = 1;
+  double cell = 0.0;
 };
 
 // Writes the summary, prints the human summary; the exit code.
@@ -68,7 +71,21 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("INPUTS", a->inputs, "Cloud files and directories (every supported cloud directly inside)");
   cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it); repeatable")
       ->allow_extra_args(false);  // one file per --manifest: later words stay INPUTS
-  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus")->required();
+  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, patch-mesh")->required();
+  cmd->add_flag("--convex", a->convex, "Bernstein kinds: constrain and certify convexity")->group("Bernstein patches");
+  cmd->add_option("--degree", a->degree, "Bernstein kinds: patch degree (as `fit --degree`)")
+      ->check(CLI::Range(2, 5))
+      ->group("Bernstein patches");
+  auto* cells_opt = cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest box edge")
+                        ->check(CLI::Range(1, 200))
+                        ->group("Bernstein patches");
+  cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length")
+      ->check(CLI::PositiveNumber)
+      ->excludes(cells_opt)
+      ->group("Bernstein patches");
+  cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 or 1 (default)")
+      ->check(CLI::Range(0, 1))
+      ->group("Bernstein patches");
   cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
   cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores; under MPI one per rank)")->check(CLI::PositiveNumber);
   cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
@@ -80,7 +97,10 @@ CommandAction AddBatchCommand(CLI::App& app) {
       ->allow_extra_args(false);
   return [a]() {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
-    const PrimitiveFitOptions fit = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    const bool model_kind = IsPatchKind(a->kind) || IsMeshKind(a->kind);
+    if (!model_kind && a->convex) throw InputError("--convex applies to quadric-patch, cubic-patch and patch-mesh");
+    const PrimitiveFitOptions fit =
+        model_kind ? PrimitiveFitOptions{} : FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
 
     const std::vector<BatchInput> all = ExpandBatchInputs(a->inputs, a->manifests);
     if (all.empty()) throw InputError("no cloud files in the given inputs");
@@ -101,6 +121,24 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.jobs = a->jobs > 0 ? a->jobs : std::max(1u, std::thread::hardware_concurrency());
     options.fit = fit;
     options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
+    if (model_kind) {
+      if (!a->fixes.empty()) throw InputError("--fix applies to primitive kinds");
+      ModelFitRequest request;
+      request.kind = a->kind;
+      request.degree = a->degree;
+      request.convex = a->convex;
+      request.cells = a->cells;
+      request.cell = a->cell;
+      request.continuity = a->continuity;
+      const bool mesh = IsMeshKind(a->kind);
+      options.model_kind = mesh ? NodeType::kBernsteinMesh : NodeType::kBernsteinPatch;
+      options.require_certified = a->convex;
+      options.model_fit = [request, mesh](const std::string& cloud) {
+        ModelFitRequest r = request;
+        r.cloud = cloud;
+        return mesh ? FitMeshCloud(r) : FitPatchCloud(r);
+      };
+    }
 
     const std::string summary_path = (std::filesystem::path(a->out_dir) / summary_name).string();
     const auto start = std::chrono::steady_clock::now();

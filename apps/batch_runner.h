@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "apps/batch_inputs.h"
+#include "apps/fit_model_kinds.h"
 #include "fit/primitive_fitter.h"
 
 namespace implicitfit {
@@ -50,6 +51,13 @@ struct BatchOptions {
   std::string out_dir;               // must exist
   int jobs = 1;                      // threads of the pool, >= 1
   bool resume = false;               // skip inputs whose outputs are complete
+  // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit_model_kinds.h): when set,
+  // every input is fitted by model_fit(cloud path) instead of `fit`; resume then also requires
+  // the model's root to be model_kind and, with require_certified (--convex), the report to
+  // say certified_convex.
+  std::function<ModelKindFit(const std::string& cloud)> model_fit;
+  NodeType model_kind = NodeType::kBernsteinPatch;
+  bool require_certified = false;
 };
 
 // Called (serialised, from any pool thread) when an input is done.

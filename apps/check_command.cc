@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/check_mesh.h"
 #include "apps/command.h"
 #include "datasets/model_file.h"
 #include "model/convexity_certificate.h"
@@ -46,6 +47,7 @@ int Run(const CheckOptions& options) {
   bool all_convex = true;
   SampleSummary summary;
   std::vector<std::vector<PatchReport>> reports(models.size());
+  std::vector<std::vector<MeshCheck>> meshes(models.size());  // apps/check_mesh.h
   for (size_t f = 0; f < models.size(); ++f) {
     const Model& model = models[f];
     for (size_t n = 0; n < model.nodes().size(); ++n) {
@@ -74,7 +76,17 @@ int Run(const CheckOptions& options) {
       }
       reports[f].push_back(r);
     }
-    if (reports[f].empty())
+    meshes[f] = CheckBernsteinMeshes(model, options.sample);
+    for (const MeshCheck& m : meshes[f]) {
+      all_convex &= m.certificate.convex_on_box;
+      if (m.sampled && m.certificate.convex_on_box && m.sample.violations > 0) {
+        ++summary.contradictions;
+        std::cerr << "implicitfit check: " << options.files[f] << ": " << m.label
+                  << ": certified convex on the box but sampling found " << m.sample.violations
+                  << " tangent-plane violations (a bug: please report)\n";
+      }
+    }
+    if (reports[f].empty() && meshes[f].empty())
       std::cerr << "implicitfit check: " << options.files[f]
                 << ": no Bernstein patches (nothing to certify)\n";
   }
@@ -101,8 +113,14 @@ int Run(const CheckOptions& options) {
                          {"worst_excursion", r.sample.worst_excursion}};
         patches.push_back(p);
       }
+      ojson mesh_list = ojson::array();
+      for (const MeshCheck& m : meshes[f]) {
+        convex &= m.certificate.convex_on_box;
+        mesh_list.push_back(MeshCheckJson(m));
+      }
       file["convex"] = convex;
       file["patches"] = patches;
+      if (!meshes[f].empty()) file["meshes"] = mesh_list;
       out["files"].push_back(file);
     }
     if (options.sample > 0)
@@ -123,6 +141,8 @@ int Run(const CheckOptions& options) {
         if (options.sample > 0) std::printf(" %11d %10d", r.sample.zero_points, r.sample.violations);
         std::printf("\n");
       }
+    for (size_t f = 0; f < models.size(); ++f)
+      for (const MeshCheck& m : meshes[f]) PrintMeshCheck(options.files[f], m);
     std::printf("%s\n", all_convex ? "all patches certified convex"
                                    : "some patches are not certified convex");
     if (options.sample > 0)

@@ -27,6 +27,9 @@ struct FitArgs {
   bool convex = false;
   int degree = 0;
   std::vector<double> tetrahedron;
+  int cells = 0;
+  double cell = 0.0;
+  int continuity = 1;
 };
 
 }  // namespace
@@ -35,7 +38,7 @@ CommandAction AddFitCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to an oriented point cloud");
   auto a = std::make_shared<FitArgs>();
   cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt, x y z nx ny nz)")->required();
-  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch");
+  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, patch-mesh");
   auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (primitive parameters, delta and epsilon, control points)");
   model_opt->excludes(init_opt);
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
@@ -46,15 +49,29 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--fix", a->fixes, "Keep a parameter constant, e.g. --fix radius=2 --fix axis=0,0,1");
   cmd->add_flag("--convex", a->convex, "Constrain the Bernstein patch to be convex (certified)")
       ->group("Bernstein patches");
-  cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch)")
-      ->check(CLI::Range(2, 4))
+  cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch; patch-mesh 2..5, default 3)")
+      ->check(CLI::Range(2, 5))
       ->group("Bernstein patches");
   cmd->add_option("--tetrahedron", a->tetrahedron, "Patch tetrahedron x1,y1,z1,...,x4,y4,z4 (default: encloses the cloud)")
       ->delimiter(',')
       ->expected(12)
       ->group("Bernstein patches");
+  auto* cells_opt = cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest edge of the cloud's box (default 4)")
+                        ->check(CLI::Range(1, 200))
+                        ->group("Bernstein patches");
+  cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length (instead of --cells)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(cells_opt)
+      ->group("Bernstein patches");
+  cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 (C0) or 1 (C1, default)")
+      ->check(CLI::Range(0, 1))
+      ->group("Bernstein patches");
   return [a]() {
     ModelFitRequest request{a->cloud, a->out, a->report, a->init, a->kind, a->degree, a->convex, a->tetrahedron};
+    request.cells = a->cells;
+    request.cell = a->cell;
+    request.continuity = a->continuity;
+    if (IsMeshKind(a->kind)) return RunMeshFit(request);
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);
     if (a->convex) throw InputError("--convex applies to quadric-patch and cubic-patch");

@@ -4,7 +4,8 @@
 set -euo pipefail
 packages=(cmake g++ make libceres-dev libeigen3-dev libpcl-dev libflann-dev libopenmpi-dev
           openmpi-bin nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev
-          clang libclang-rt-14-dev)  # clang: the fuzzers (scripts/fuzz.sh)
+          clang libclang-rt-14-dev  # clang: the fuzzers (scripts/fuzz.sh)
+          libsuitesparse-dev)  # SuiteSparseQR: continuity projection of patch meshes
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
