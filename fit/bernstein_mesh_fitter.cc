@@ -82,6 +82,29 @@ class FaceRowsCost final : public ceres::CostFunction {
   Eigen::MatrixXd a_u_, a_t_;
 };
 
+// One linear row r = weight (B(tau)^T b_t - target): the offset equations f(p +- d n) = +-d of
+// the initialisation, kept in the refinement with a small weight to fix the scale of f (the
+// geometric residuals are invariant under f -> s f, and the continuity rows would otherwise be
+// lowered by shrinking f towards 0).
+class LinearRowCost final : public ceres::CostFunction {
+ public:
+  LinearRowCost(std::vector<double> row, double target) : row_(std::move(row)), target_(target) {
+    set_num_residuals(1);
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(row_.size()));
+  }
+  bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
+    double s = -target_;
+    for (size_t j = 0; j < row_.size(); ++j) s += row_[j] * p[0][j];
+    residuals[0] = s;
+    if (jacobians && jacobians[0]) std::copy(row_.begin(), row_.end(), jacobians[0]);
+    return true;
+  }
+
+ private:
+  std::vector<double> row_;
+  double target_;
+};
+
 // Rejects (returns false) when the tetrahedron's smallest A^mu eigenvalue is below margin.
 class MeshConvexityGuard final : public ceres::CostFunction {
  public:
@@ -247,7 +270,7 @@ ceres::CostFunction* AnyPointCost(int k, const Tetrahedron& tet, const Vec& x, c
 int Refine(const BernsteinGrid& grid, int k, int continuity, const std::vector<Vec>& points,
            const std::vector<Vec>& normals, const PointData& data, const ContinuityRows& c2,
            const std::vector<bool>& c2_keep, const MeshFitOptions& options, double loss_scale,
-           const std::vector<double>* guard_margins, std::vector<double>* b) {
+           double offset, const std::vector<double>* guard_margins, std::vector<double>* b) {
   const int n = static_cast<int>(NumBernsteinControlPoints(k));
   ceres::Problem::Options po;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -262,6 +285,20 @@ int Refine(const BernsteinGrid& grid, int k, int continuity, const std::vector<V
     problem.AddResidualBlock(AnyPointCost(k, tets[t], points[i], normals[i], options.normal_weight),
                              loss.get(), base + t * n);
   }
+  // Scale-fixing offset rows (LinearRowCost), weight kScaleWeight.
+  constexpr double kScaleWeight = 0.1;
+  std::vector<double> basis(static_cast<size_t>(n));
+  for (size_t i = 0; i < points.size(); ++i)
+    for (double sign : {1.0, -1.0}) {
+      const Vec x = points[i] + sign * offset * normals[i];
+      double tau[4];
+      const long long t = grid.Locate(x.data(), tau);
+      BasisValues(k, tau, basis.data());
+      std::vector<double> row(basis);
+      for (double& v : row) v *= kScaleWeight;
+      problem.AddResidualBlock(new LinearRowCost(std::move(row), kScaleWeight * sign * offset), nullptr,
+                               base + t * n);
+    }
   const ContinuityRows rows = BernsteinContinuityRows(grid, k, 0, continuity);
   for (auto& [face, m] : FaceBlocks(rows, n, options.continuity_weight, nullptr))
     problem.AddResidualBlock(new FaceRowsCost(m.first, m.second), nullptr, base + face.first * n,
@@ -382,10 +419,10 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
       const ConvexityCertificate c = CertifyConvexity(k, b.data() + t * n);
       margins[t] = std::min(1e-4 * scale, 0.5 * c.min_eigenvalue);
     }
-    result.iterations = Refine(grid, k, 1, points, normals, data, c2, c2_keep, options, loss_scale, &margins, &b);
+    result.iterations = Refine(grid, k, 1, points, normals, data, c2, c2_keep, options, loss_scale, d, &margins, &b);
   } else {
     result.iterations = Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep, options,
-                               loss_scale, nullptr, &b);
+                               loss_scale, d, nullptr, &b);
   }
   result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   result.control_points = b;

@@ -13,7 +13,9 @@
 // 2. Ceres refinement: one parameter block per tetrahedron; per point r0 = f/|grad f| and the
 //    normal term w (grad f/|grad f| - n) with a Cauchy loss at 3x the initial RMS; the C0/C1
 //    rows of every interior face as one linear residual block (weight continuity_weight)
-//    coupling its two tetrahedra; the C2 smoothing rows as above. Then the exact projection
+//    coupling its two tetrahedra; the C2 smoothing rows as above; the offset rows of step 1
+//    with weight 0.1 (they fix the scale of f, which the geometric residuals leave free and the
+//    continuity rows would otherwise shrink). Then the exact projection
 //    onto the continuity space (fit/continuity_projection.h).
 // 3. --convex (C1 only; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
 //    f convex on the box): start from the certified convex degree-2 patch fit
