@@ -51,6 +51,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
                 {"certified_convex", r.certified_convex},
                 {"min_eigenvalue", r.min_eigenvalue},
                 {"iterations", r.iterations},
+                {"kept_initialisation", r.kept_initialisation},
                 {"seconds", r.seconds},
                 {"normals", normals}};
   out.success = r.success;

@@ -296,7 +296,7 @@ int Refine(const BernsteinGrid& grid, int k, int continuity, const std::vector<V
       BasisValues(k, tau, basis.data());
       std::vector<double> row(basis);
       for (double& v : row) v *= kScaleWeight;
-      problem.AddResidualBlock(new LinearRowCost(std::move(row), kScaleWeight * sign * offset), nullptr,
+      problem.AddResidualBlock(new LinearRowCost(std::move(row), kScaleWeight * sign * offset), loss.get(),
                                base + t * n);
     }
   const ContinuityRows rows = BernsteinContinuityRows(grid, k, 0, continuity);
@@ -420,11 +420,20 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
       margins[t] = std::min(1e-4 * scale, 0.5 * c.min_eigenvalue);
     }
     result.iterations = Refine(grid, k, 1, points, normals, data, c2, c2_keep, options, loss_scale, d, &margins, &b);
+    result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   } else {
+    // The refinement must not end worse than the (projected) initialisation it started from
+    // (it can on real scans with inconsistent normals); keep the better of the two.
+    const std::vector<double> initial = b;
     result.iterations = Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep, options,
                                loss_scale, d, nullptr, &b);
+    result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
+    if (!(MeshRms(grid, k, b, points, normals, nullptr) <= result.initial_rms)) {
+      b = initial;
+      result.continuity_defect = ContinuityDefect(grid, k, options.continuity, b.data());
+      result.kept_initialisation = true;
+    }
   }
-  result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   result.control_points = b;
   result.rms = MeshRms(grid, k, b, points, normals, &result.mean_normal_angle_deg);
   result.min_eigenvalue = std::numeric_limits<double>::infinity();

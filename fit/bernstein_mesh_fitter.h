@@ -15,8 +15,9 @@
 //    rows of every interior face as one linear residual block (weight continuity_weight)
 //    coupling its two tetrahedra; the C2 smoothing rows as above; the offset rows of step 1
 //    with weight 0.1 (they fix the scale of f, which the geometric residuals leave free and the
-//    continuity rows would otherwise shrink). Then the exact projection
-//    onto the continuity space (fit/continuity_projection.h).
+//    continuity rows would otherwise shrink), under the same Cauchy loss. Then the exact
+//    projection onto the continuity space (fit/continuity_projection.h); if the result is worse
+//    than the projected initialisation, that is kept (kept_initialisation).
 // 3. --convex (C1 only; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
 //    f convex on the box): start from the certified convex degree-2 patch fit
 //    (fit/patch_fitter.h) on the enclosing tetrahedron, restricted to every tetrahedron and
@@ -66,6 +67,7 @@ struct MeshFitResult {
   double min_eigenvalue = 0.0;         // smallest A^mu eigenvalue over all tetrahedra
   long long tetrahedra = 0;
   int iterations = 0;
+  bool kept_initialisation = false;    // the refinement ended worse: the initialisation is kept
   double seconds = 0.0;
   Model ToModel() const;
 };
