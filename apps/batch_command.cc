@@ -37,6 +37,9 @@ struct BatchArgs {
   unsigned seed = 1;
   double threshold = 0.0;
   std::string estimator = "robust";
+  bool convex = false;  // Bernstein kinds (apps/fit_model_kinds.h)
+  int degree = 0, cells = 0, continuity = 1;
+  double cell = 0.0;
 };
 
 // Writes the summary, prints the human summary; the exit code.
@@ -71,7 +74,21 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("INPUTS", a->inputs, "Cloud files and directories (every supported cloud directly inside)");
   cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it); repeatable")
       ->allow_extra_args(false);  // one file per --manifest: later words stay INPUTS
-  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus; or scene (detect every primitive of each cloud)")->required();
+  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, patch-mesh; or scene (detect every primitive of each cloud)")->required();
+  cmd->add_flag("--convex", a->convex, "Bernstein kinds: constrain and certify convexity")->group("Bernstein patches");
+  cmd->add_option("--degree", a->degree, "Bernstein kinds: patch degree (as `fit --degree`)")
+      ->check(CLI::Range(2, 5))
+      ->group("Bernstein patches");
+  auto* cells_opt = cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest box edge")
+                        ->check(CLI::Range(1, 200))
+                        ->group("Bernstein patches");
+  cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length")
+      ->check(CLI::PositiveNumber)
+      ->excludes(cells_opt)
+      ->group("Bernstein patches");
+  cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 or 1 (default)")
+      ->check(CLI::Range(0, 1))
+      ->group("Bernstein patches");
   cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
   cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores; under MPI one per rank)")->check(CLI::PositiveNumber);
   cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
@@ -86,8 +103,11 @@ CommandAction AddBatchCommand(CLI::App& app) {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
     const bool scene = a->kind == "scene";  // one detection per input (apps/batch_scene.cc)
     if (scene && !a->fixes.empty()) throw InputError("--fix does not apply to --model scene");
+    const bool model_kind = IsPatchKind(a->kind) || IsMeshKind(a->kind);
+    if (!model_kind && a->convex) throw InputError("--convex applies to quadric-patch, cubic-patch and patch-mesh");
     PrimitiveFitOptions fit =
-        FitOptionsFromArguments(scene ? "plane" : a->kind, a->seed, scene ? 0.0 : a->threshold, a->fixes);
+        model_kind ? PrimitiveFitOptions{}
+                   : FitOptionsFromArguments(scene ? "plane" : a->kind, a->seed, scene ? 0.0 : a->threshold, a->fixes);
     SetEstimatorFromArgument(a->estimator, &fit);
 
     const std::vector<BatchInput> all = ExpandBatchInputs(a->inputs, a->manifests);
@@ -113,6 +133,24 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.fit = fit;
     options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
     options.detect.num_threads = options.fit.num_threads;
+    if (model_kind) {
+      if (!a->fixes.empty()) throw InputError("--fix applies to primitive kinds");
+      ModelFitRequest request;
+      request.kind = a->kind;
+      request.degree = a->degree;
+      request.convex = a->convex;
+      request.cells = a->cells;
+      request.cell = a->cell;
+      request.continuity = a->continuity;
+      const bool mesh = IsMeshKind(a->kind);
+      options.model_kind = mesh ? NodeType::kBernsteinMesh : NodeType::kBernsteinPatch;
+      options.require_certified = a->convex;
+      options.model_fit = [request, mesh](const std::string& cloud) {
+        ModelFitRequest r = request;
+        r.cloud = cloud;
+        return mesh ? FitMeshCloud(r) : FitPatchCloud(r);
+      };
+    }
 
     const std::string summary_path = (std::filesystem::path(a->out_dir) / summary_name).string();
     const auto start = std::chrono::steady_clock::now();

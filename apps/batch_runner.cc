@@ -60,6 +60,59 @@ std::string Number(const char* format, double v) {
   return buffer;
 }
 
+// Resume check for the Bernstein kinds (see BatchOptions::model_fit).
+bool ReadCompleteModelKindOutputs(const BatchInput& in, const BatchOptions& o, BatchOutcome* out) {
+  try {
+    const Model model = ReadModelFile(ModelPath(o, in));
+    if (model.root() < 0 || model.nodes()[model.root()].type != o.model_kind) return false;
+    std::ifstream report_file(ReportPath(o, in));
+    if (!report_file) return false;
+    const nlohmann::json report = nlohmann::json::parse(report_file);
+    if (!report.value("success", false)) return false;
+    if (o.require_certified && !report.value("certified_convex", false)) return false;
+    out->rms = report.at("rms_distance").get<double>();
+    out->points = report.at("points").get<size_t>();
+    out->inliers = report.value("inliers", out->points);
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+BatchOutcome ProcessModelKindInput(const BatchInput& in, const BatchOptions& o) {
+  BatchOutcome out;
+  out.input = in.path;
+  out.name = in.name;
+  if (o.resume && ReadCompleteModelKindOutputs(in, o, &out)) {
+    out.status = BatchStatus::kSkipped;
+    return out;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::string model_path = ModelPath(o, in), report_path = ReportPath(o, in);
+  std::error_code ignored;
+  try {
+    const ModelKindFit fit = o.model_fit(in.path);
+    out.points = out.inliers = fit.points;
+    out.rms = fit.rms;
+    if (fit.success) {
+      WriteModelFile(fit.model, model_path);
+      out.status = BatchStatus::kOk;
+    } else {
+      fs::remove(model_path, ignored);
+      out.status = BatchStatus::kFailed;
+      out.error = "fit failed: " + fit.message;
+    }
+    WriteFileAtomically(report_path, fit.report.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    fs::remove(model_path, ignored);
+    fs::remove(report_path, ignored);
+    out.status = BatchStatus::kError;
+    out.error = e.what();
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
 }  // namespace
 
 const char* BatchStatusName(BatchStatus status) {
@@ -74,6 +127,7 @@ const char* BatchStatusName(BatchStatus status) {
 
 BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   if (o.scene) return ProcessSceneInput(in, o);
+  if (o.model_fit) return ProcessModelKindInput(in, o);
   BatchOutcome out;
   out.input = in.path;
   out.name = in.name;

@@ -24,6 +24,7 @@
 
 #include "apps/batch_inputs.h"
 #include "fit/primitive_detector.h"
+#include "apps/fit_model_kinds.h"
 #include "fit/primitive_fitter.h"
 
 namespace implicitfit {
@@ -53,6 +54,13 @@ struct BatchOptions {
   bool resume = false;               // skip inputs whose outputs are complete
   bool scene = false;                // `--model scene`: one detection per input (apps/detect_job.h)
   DetectionOptions detect;           // used for every input when scene is set
+  // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit_model_kinds.h): when set,
+  // every input is fitted by model_fit(cloud path) instead of `fit`; resume then also requires
+  // the model's root to be model_kind and, with require_certified (--convex), the report to
+  // say certified_convex.
+  std::function<ModelKindFit(const std::string& cloud)> model_fit;
+  NodeType model_kind = NodeType::kBernsteinPatch;
+  bool require_certified = false;
 };
 
 // Called (serialised, from any pool thread) when an input is done.

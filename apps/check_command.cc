@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/check_mesh.h"
 #include "apps/command.h"
 #include "datasets/model_file.h"
 #include "model/convexity_fields.h"
@@ -54,6 +55,7 @@ int Run(const CheckOptions& options) {
   std::vector<std::vector<PatchReport>> reports(models.size());
   std::vector<nlohmann::ordered_json> trees(models.size()), tree_verdicts(models.size());
   std::vector<char> tree_certified(models.size(), 0);
+  std::vector<std::vector<MeshCheck>> meshes(models.size());  // apps/check_mesh.h
   for (size_t f = 0; f < models.size(); ++f) {
     const Model& model = models[f];
     for (const PatchConvexity& patch : CertifyModelPatches(model)) {
@@ -82,7 +84,17 @@ int Run(const CheckOptions& options) {
       }
       reports[f].push_back(r);
     }
-    if (reports[f].empty())
+    meshes[f] = CheckBernsteinMeshes(model, options.sample);
+    for (const MeshCheck& m : meshes[f]) {
+      all_convex &= m.certificate.convex_on_box;
+      if (m.sampled && m.certificate.convex_on_box && m.sample.violations > 0) {
+        ++summary.contradictions;
+        std::cerr << "implicitfit check: " << options.files[f] << ": " << m.label
+                  << ": certified convex on the box but sampling found " << m.sample.violations
+                  << " tangent-plane violations (a bug: please report)\n";
+      }
+    }
+    if (reports[f].empty() && meshes[f].empty())
       std::cerr << "implicitfit check: " << options.files[f]
                 << ": no Bernstein patches (nothing to certify)\n";
     bool certified = false;
@@ -118,11 +130,17 @@ int Run(const CheckOptions& options) {
                          {"worst_excursion", r.sample.worst_excursion}};
         patches.push_back(p);
       }
-      if (reports[f].empty() && !options.patches_only) convex = tree_certified[f];
+      ojson mesh_list = ojson::array();
+      for (const MeshCheck& m : meshes[f]) {
+        convex &= m.certificate.convex_on_box;
+        mesh_list.push_back(MeshCheckJson(m));
+      }
+      if (reports[f].empty() && meshes[f].empty() && !options.patches_only) convex = tree_certified[f];
       file["convex"] = convex;
       file["patches"] = patches;
       file["tree"] = tree_verdicts[f];
       file["nodes"] = trees[f];
+      if (!meshes[f].empty()) file["meshes"] = mesh_list;
       out["files"].push_back(file);
     }
     if (options.sample > 0)
@@ -144,6 +162,7 @@ int Run(const CheckOptions& options) {
         std::printf("\n");
       }
     for (size_t f = 0; f < models.size(); ++f)
+      for (const MeshCheck& m : meshes[f]) PrintMeshCheck(options.files[f], m);
       if (reports[f].empty())
         std::printf("%-24s %-28s tree: %s\n", options.files[f].c_str(), "(no patches)",
                     tree_verdicts[f]["class"].get<std::string>().c_str());

@@ -30,6 +30,9 @@ struct FitArgs {
   std::vector<int> through_vertices;
   std::vector<std::string> vertex_normals, through_edges;
   std::string estimator = "robust";
+  int cells = 0;
+  double cell = 0.0;
+  int continuity = 1;
 };
 
 }  // namespace
@@ -38,7 +41,7 @@ CommandAction AddFitCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to an oriented point cloud");
   auto a = std::make_shared<FitArgs>();
   cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals estimated when absent)")->required();
-  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, box, paraboloid, capsule");
+  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, box, paraboloid, capsule, patch-mesh");
   auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (primitive parameters, delta and epsilon, control points)");
   model_opt->excludes(init_opt);
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
@@ -52,8 +55,8 @@ CommandAction AddFitCommand(CLI::App& app) {
                   "ISO 10360-6) or minimum-zone (smallest max |distance|, ISO 1101)");
   cmd->add_flag("--convex", a->convex, "Constrain the Bernstein patch to be convex (certified)")
       ->group("Bernstein patches");
-  cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch)")
-      ->check(CLI::Range(2, 4))
+  cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch; patch-mesh 2..5, default 3)")
+      ->check(CLI::Range(2, 5))
       ->group("Bernstein patches");
   cmd->add_option("--tetrahedron", a->tetrahedron, "Patch tetrahedron x1,y1,z1,...,x4,y4,z4 (default: encloses the cloud)")
       ->delimiter(',')
@@ -74,9 +77,13 @@ CommandAction AddFitCommand(CLI::App& app) {
     request.through_vertices = a->through_vertices;
     request.vertex_normals = a->vertex_normals;
     request.through_edges = a->through_edges;
+    request.cells = a->cells;
+    request.cell = a->cell;
+    request.continuity = a->continuity;
     if (request.HasShapeConstraints() && !IsPatchKind(a->kind))
       throw InputError("--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
                        "and cubic-patch");
+    if (IsMeshKind(a->kind)) return RunMeshFit(request);
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);
     if (IsShapeKind(a->kind)) return RunShapeFit(request, a->seed);

@@ -130,7 +130,7 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
   return 0;
 }
 
-int RunPatchFit(const ModelFitRequest& request) {
+ModelKindFit FitPatchCloud(const ModelFitRequest& request) {
   PatchFitOptions options;
   options.degree = request.degree > 0 ? request.degree : (request.kind == "cubic-patch" ? 3 : 2);
   options.convex = request.convex;
@@ -149,17 +149,31 @@ int RunPatchFit(const ModelFitRequest& request) {
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const PatchFitResult r = FitBernsteinPatch(cloud.points, cloud.normals, options);
-  const nlohmann::json report = PatchFitReport(r, options, cloud.size(), normals);
-  if (!r.success) {
+  ModelKindFit out;
+  out.report = PatchFitReport(r, options, cloud.size(), normals);
+  out.success = r.success;
+  out.message = r.message;
+  out.points = cloud.size();
+  out.rms = r.rms;
+  out.certified_convex = r.certified_convex;
+  if (r.success) out.model = r.ToModel();
+  return out;
+}
+
+int RunPatchFit(const ModelFitRequest& request) {
+  const ModelKindFit fit = FitPatchCloud(request);
+  const nlohmann::json& report = fit.report;
+  if (!fit.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
-    std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << r.message << "\n";
+    std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << fit.message << "\n";
     return 1;
   }
-  Finish(request, r.ToModel(), report);
-  std::printf("points %zu  rms %.6g  normal angle %.3g deg  certified convex %s (min eigenvalue %.3g)", cloud.size(),
-              r.rms, r.mean_normal_angle_deg, r.certified_convex ? "yes" : "no", r.min_eigenvalue);
-  if (options.convex) std::printf("  unconstrained rms %.6g", r.unconstrained_rms);
-  std::printf("  %.3f s\n", r.seconds);
+  Finish(request, fit.model, report);
+  std::printf("points %zu  rms %.6g  normal angle %.3g deg  certified convex %s (min eigenvalue %.3g)", fit.points,
+              fit.rms, report["mean_normal_angle_deg"].get<double>(), fit.certified_convex ? "yes" : "no",
+              report["min_eigenvalue"].get<double>());
+  if (request.convex) std::printf("  unconstrained rms %.6g", report["unconstrained_rms_distance"].get<double>());
+  std::printf("  %.3f s\n", report["seconds"].get<double>());
   return 0;
 }
 

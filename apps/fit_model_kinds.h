@@ -8,8 +8,11 @@
 // returns the exit code (0 success, 1 the fit failed or the constraint cannot be met).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "model/model.h"
 
 namespace implicitfit {
 
@@ -26,7 +29,24 @@ struct ModelFitRequest {
   bool HasShapeConstraints() const {
     return !through_vertices.empty() || !vertex_normals.empty() || !through_edges.empty();
   }
+  int cells = 0;                      // patch-mesh: --cells (0: default)
+  double cell = 0.0;                  // patch-mesh: --cell (0: from cells)
+  int continuity = 1;                 // patch-mesh: --continuity
 };
+
+// The fit of one cloud for the Bernstein kinds, shared by `fit` and `batch`: the report that
+// `fit --report` writes and, on success, the model. Throws InputError for bad input.
+struct ModelKindFit {
+  bool success = false;
+  std::string message;
+  size_t points = 0;
+  double rms = 0.0;
+  bool certified_convex = false;
+  nlohmann::json report;
+  Model model;
+};
+ModelKindFit FitPatchCloud(const ModelFitRequest& request);
+ModelKindFit FitMeshCloud(const ModelFitRequest& request);
 
 bool IsPatchKind(const std::string& kind);
 // box, paraboloid, capsule: a robust start (fit/shape_starts.h), then the tree fitter; the
@@ -35,5 +55,9 @@ bool IsShapeKind(const std::string& kind);
 int RunShapeFit(const ModelFitRequest& request, unsigned seed);
 int RunTreeFit(const ModelFitRequest& request);
 int RunPatchFit(const ModelFitRequest& request);
+// --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1] [--convex]: a
+// Bernstein mesh (fit/bernstein_mesh_fitter.h), apps/fit_mesh_kind.cc.
+bool IsMeshKind(const std::string& kind);
+int RunMeshFit(const ModelFitRequest& request);
 
 }  // namespace implicitfit

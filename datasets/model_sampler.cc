@@ -63,6 +63,10 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       *hi += margin;
       return;
     }
+    case NodeType::kBernsteinMesh:
+      *lo = node.grid.BoxMin();
+      *hi = node.grid.BoxMax();
+      return;
     case NodeType::kBox: around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm()); return;
     case NodeType::kParaboloid: around(Vec(p[0], p[1], p[2]), 1.0); return;  // the cap |w| <= 1
     case NodeType::kBlobs: {  // every blob's centre +- its reach (gaussian: where a e^(-b R^2) = T/4)

@@ -135,6 +135,8 @@ struct Hypothesizer {
       case NodeType::kBlobs:
       case NodeType::kSkeletonOffset:
       case NodeType::kPartition:
+    case NodeType::kBernsteinMesh:
+      case NodeType::kBernsteinMesh:
         return false;  // no minimal-sample hypothesis (PrimitiveFitOptions::IsValid refuses them)
     }
     return false;
@@ -542,6 +544,7 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     case NodeType::kBlobs:
     case NodeType::kSkeletonOffset:
     case NodeType::kPartition:
+    case NodeType::kBernsteinMesh:
       result.message = std::string("unsupported kind: ") + NodeTypeName(options.kind);
       return result;
   }

@@ -2,6 +2,7 @@
 
 #include "model/dual3.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace implicitfit {
@@ -37,6 +38,7 @@ const std::vector<TypeInfo>& Types() {
        {{"centers", -3}, {"weights", -1}, {"widths", -1}, {"threshold", 1}}},
       {NodeType::kSkeletonOffset, "skeleton_offset", {{"skeleton", -3}, {"radius", 1}}},
       {NodeType::kPartition, "partition", {{"epsilon", 1}}},
+      {NodeType::kBernsteinMesh, "bernstein_mesh", {{"control_points", 0}}},
   };
   return types;
 }
@@ -108,6 +110,8 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
   if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset || type == NodeType::kPartition)
     throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset / AddPartition");
+  if (type == NodeType::kBernsteinMesh)
+    throw std::invalid_argument("AddPrimitive: use AddBernsteinMesh for a bernstein_mesh");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -219,6 +223,29 @@ int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
   node.name = std::move(name);
   node.degree = degree;
   node.tetrahedron = tetrahedron;
+  return AddNode(std::move(node), control_points);
+}
+
+int Model::AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
+                            const std::vector<double>& control_points, std::string name) {
+  if (degree < 1) throw std::invalid_argument("AddBernsteinMesh: degree must be >= 1");
+  if (continuity != 0 && continuity != 1)
+    throw std::invalid_argument("AddBernsteinMesh: continuity must be 0 or 1");
+  if (!(grid.cell > 0.0) || !std::isfinite(grid.cell) || !grid.origin.allFinite())
+    throw std::invalid_argument("AddBernsteinMesh: the grid needs a finite origin and cell > 0");
+  for (int c : grid.cells)
+    if (c < 1) throw std::invalid_argument("AddBernsteinMesh: every cells entry must be >= 1");
+  const long long count = grid.NumTetrahedra() * NumBernsteinControlPoints(degree);
+  if (static_cast<long long>(control_points.size()) != count)
+    throw std::invalid_argument("AddBernsteinMesh: " + std::to_string(grid.NumTetrahedra()) +
+                                " tetrahedra of degree " + std::to_string(degree) + " take " +
+                                std::to_string(count) + " control points");
+  ModelNode node;
+  node.type = NodeType::kBernsteinMesh;
+  node.name = std::move(name);
+  node.degree = degree;
+  node.grid = grid;
+  node.continuity = continuity;
   return AddNode(std::move(node), control_points);
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "model/bernstein_mesh.h"
 #include "model/bernstein_patch.h"
 #include "model/blobs.h"
 #include "model/box.h"
@@ -55,6 +56,7 @@ enum class NodeType {
   kBlobs,           // Blinn blobs and compact kernels (model/blobs.h)
   kSkeletonOffset,  // offsets of points, segments, polylines (model/skeleton_offset.h)
   kPartition,       // soft space partition on a grid (model/partition.h)
+  kBernsteinMesh,  // model/bernstein_mesh.h: degree, grid, continuity; control_points
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -96,6 +98,8 @@ struct ModelNode {
   int count = 0;                     // kinds with per-element fields: number of elements
   int variant = 0;                   // blobs: BlobKernel; skeleton_offset: SkeletonKind
   std::vector<std::vector<double>> cuts;  // partition: the cuts of x, y, z (structure)
+  BernsteinGrid grid;                // bernstein_mesh: the Kuhn grid
+  int continuity = 0;                // bernstein_mesh: declared continuity, 0 or 1
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -130,6 +134,11 @@ class Model {
   // std::invalid_argument otherwise.
   int AddPartition(std::vector<std::vector<double>> cuts, double epsilon, int order,
                    std::vector<int> children, std::string name = "");
+  // A Bernstein mesh of degree k >= 1 over the Kuhn split of `grid`, with
+  // 6 * cubes * NumBernsteinControlPoints(k) control points; continuity is 0 or 1 (declared,
+  // checked by `check`). Throws std::invalid_argument otherwise.
+  int AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
+                       const std::vector<double>& control_points, std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -178,6 +187,7 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kQuadric: return QuadricEvaluator::Evaluate(p, x);
     case NodeType::kBernsteinPatch:
       return BernsteinPatch::Evaluate(node.degree, node.tetrahedron, p, x);
+    case NodeType::kBernsteinMesh: return BernsteinMesh::Evaluate(node.degree, node.grid, p, x);
     case NodeType::kUnion:
     case NodeType::kIntersection:
     case NodeType::kDifference: {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "model/bernstein_mesh_json.h"
+
 namespace implicitfit {
 namespace {
 
@@ -183,6 +185,7 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
     case NodeType::kBlobs:
     case NodeType::kSkeletonOffset:
     case NodeType::kPartition:
+    case NodeType::kBernsteinMesh:
       Fail(path, "internal: not a primitive");
   }
   return p;
@@ -392,6 +395,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kPlane) keys.insert("point");  // input form; written as normal, offset
   if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
   if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
+  if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
   return keys;
 }
 
@@ -467,6 +471,8 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     index = ReadPartition(node, path, depth, name, model);
   } else if (type == NodeType::kSkeletonOffset) {
     index = ReadSkeletonOffset(node, path, name, model);
+  } else if (type == NodeType::kBernsteinMesh) {
+    index = ReadBernsteinMeshNode(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -554,6 +560,8 @@ json WriteNode(const Model& model, int index) {
                                json::array({e[1][0], e[1][1], e[1][2]}),
                                json::array({e[2][0], e[2][1], e[2][2]})});
     out["half_sizes"] = Slice(p, b + 7, 3);
+  } else if (node.type == NodeType::kBernsteinMesh) {
+    WriteBernsteinMeshNode(model, node, &out);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);

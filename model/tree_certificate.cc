@@ -75,6 +75,9 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
     case NodeType::kPartition:
       return Leaf(TreeConvexity::kNotCertified,
                   "partition: not certified (sum b_i f_i is not convex even for convex f_i)");
+    case NodeType::kBernsteinMesh:
+      return Leaf(TreeConvexity::kNotCertified,
+                  "bernstein_mesh: certified by its own check (\"meshes\": convex on the box)");
     case NodeType::kMorph:
     case NodeType::kUnion:
     case NodeType::kIntersection:

@@ -1,0 +1,82 @@
+// Fitting a Bernstein mesh (model/bernstein_mesh.h) to an oriented cloud: the patch-mesh fit of
+// NOTES.md G-1 (fit --model patch-mesh).
+//
+// Grid. The cloud's bounding box grown by 5% of its extent on every side (at least 5% of the
+// longest extent on a flat axis); cube edge h = --cell, or (--cells n) the longest grown
+// extent / n; n_a = ceil(extent_a / h) cubes per axis, centred on the box.
+// 1. Linear initialisation, one sparse least-squares problem: f(p_i) = 0 and
+//    f(p_i +- d n_i) = +-d (d = 1% of the box diagonal), linear in the control points. It is
+//    solved on the global domain points (b = P w: C0 exact, model/bernstein_mesh_continuity.h)
+//    with the C1 rows as weighted equations (weight continuity_weight) and soft C2 rows
+//    (smoothing_weight) on the faces of tetrahedra that hold no point, so holes close smoothly,
+//    by sparse Cholesky of the normal equations; then the exact projection onto ker C.
+// 2. Ceres refinement: one parameter block per tetrahedron; per point r0 = f/|grad f| and the
+//    normal term w (grad f/|grad f| - n) with a Cauchy loss at 3x the initial RMS; the C0/C1
+//    rows of every interior face as one linear residual block (weight continuity_weight)
+//    coupling its two tetrahedra; the C2 smoothing rows as above; the offset rows of step 1
+//    with weight 0.1 (they fix the scale of f, which the geometric residuals leave free and the
+//    continuity rows would otherwise shrink), under the same Cauchy loss. Then the exact
+//    projection onto the continuity space (fit/continuity_projection.h); if the result is worse
+//    than the projected initialisation, that is kept (kept_initialisation).
+// 3. --convex (C1 only; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
+//    f convex on the box): start from the certified convex degree-2 patch fit
+//    (fit/patch_fitter.h) on the enclosing tetrahedron, restricted to every tetrahedron and
+//    elevated to degree k (a global quadric: C-infinity, certified on every tetrahedron), so
+//    the start is feasible; a guard rejects every step after which some tetrahedron's
+//    smallest A^mu eigenvalue falls below the margin; after the projection every tetrahedron
+//    is re-certified and the continuity defect checked. Failure => success = false.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "model/bernstein_mesh.h"
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct MeshFitOptions {
+  int degree = 3;                  // 2..5 (C1 wants >= 3: C1 quadratics are nearly global)
+  int cells = 0;                   // cubes along the longest box edge (used when cell == 0)
+  double cell = 0.0;               // cube edge h; 0: from cells (default 4 cubes)
+  bool has_grid = false;           // use `grid` as given instead of the cloud's box
+  BernsteinGrid grid;
+  int continuity = 1;              // 0 or 1
+  bool convex = false;             // enforce and certify convexity on the whole box (C1 only)
+  double normal_weight = 0.1;      // w of the normal residuals
+  int max_iterations = 100;        // Ceres iterations
+  double continuity_weight = 1e4;  // weight of the continuity rows before the projection
+  double smoothing_weight = 0.1;   // weight of the C2 rows on faces of empty tetrahedra
+  bool IsValid(std::string* error) const;
+};
+
+struct MeshFitResult {
+  bool success = false;
+  std::string message;
+  int degree = 0;
+  int continuity = 0;
+  BernsteinGrid grid;
+  std::vector<double> control_points;  // all tetrahedra, model/bernstein_mesh.h layout
+  double rms = 0.0;                    // RMS of f/|grad f| over all points
+  double initial_rms = 0.0;            // after the linear initialisation
+  double mean_normal_angle_deg = -1;   // mean angle between grad f and the normals
+  double continuity_defect = 0.0;      // max |C b| / max |b| after the projection
+  bool certified_convex = false;       // every tetrahedron certified (and, C1, defect tiny)
+  int certified_tetrahedra = 0;
+  double min_eigenvalue = 0.0;         // smallest A^mu eigenvalue over all tetrahedra
+  long long tetrahedra = 0;
+  int iterations = 0;
+  bool kept_initialisation = false;    // the refinement ended worse: the initialisation is kept
+  double seconds = 0.0;
+  Model ToModel() const;
+};
+
+MeshFitResult FitBernsteinMesh(const std::vector<Eigen::Vector3d>& points,
+                               const std::vector<Eigen::Vector3d>& normals,
+                               const MeshFitOptions& options);
+
+// The grid the fitter uses for a cloud (see the header comment).
+BernsteinGrid MeshGridForCloud(const std::vector<Eigen::Vector3d>& points, int cells, double cell);
+
+}  // namespace implicitfit

@@ -1,0 +1,138 @@
+// `implicitfit fit --model patch-mesh`, `check` on bernstein_mesh models and `batch` with the
+// Bernstein kinds, end to end: exit codes, report and check fields, no model on failure,
+// resume.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "model/bernstein_conversion.h"
+#include "model/bernstein_mesh.h"
+#include "support/run_command.h"
+
+namespace {
+
+using nlohmann::json;
+using testsupport::FileExists;
+using testsupport::RunCommand;
+using testsupport::Slurp;
+using testsupport::WriteText;
+const std::string kCli = IMPLICITFIT_CLI;
+
+std::string SphereCloud(const std::string& dir, const std::string& name, double radius, int seed) {
+  const std::string truth = dir + "/" + name + ".truth.json", cloud = dir + "/" + name + ".xyz";
+  WriteText(truth, json({{"format", "implicitfit-model"},
+                         {"version", 1},
+                         {"root", {{"type", "sphere"}, {"center", {0.1, -0.2, 0.3}}, {"radius", radius}}}})
+                       .dump());
+  const auto r = RunCommand(kCli + " sample " + truth + " --count 3000 --noise 0.001 --seed " +
+                            std::to_string(seed) + " --out " + cloud);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return cloud;
+}
+
+TEST(MeshCli, ConvexFitIsCertifiedAndCheckAgrees) {
+  const std::string dir = testsupport::ScratchDir("mesh_fit");
+  const std::string cloud = SphereCloud(dir, "sphere", 1.0, 1);
+  const auto fit = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --convex --out " + dir +
+                              "/m.json --report " + dir + "/r.json");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const json report = json::parse(Slurp(dir + "/r.json"));
+  EXPECT_TRUE(report["certified_convex"].get<bool>());
+  EXPECT_EQ(report["patches"], 48);
+  EXPECT_LE(report["rms_distance"].get<double>(), 0.01);
+  const json model = json::parse(Slurp(dir + "/m.json"));
+  EXPECT_EQ(model["root"]["type"], "bernstein_mesh");
+  EXPECT_EQ(model["root"]["continuity"], 1);
+  const auto check = RunCommand(kCli + " check " + dir + "/m.json --json --sample 2000");
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  const json c = json::parse(check.out);
+  EXPECT_TRUE(c["convex"].get<bool>());
+  const json& mesh = c["files"][0]["meshes"][0];
+  EXPECT_EQ(mesh["verdict"], "convex on the box");
+  EXPECT_EQ(mesh["certified_tetrahedra"], 48);
+  EXPECT_LE(mesh["c1_defect"].get<double>(), 1e-9);
+  EXPECT_EQ(mesh["sample"]["violations"], 0);
+  EXPECT_EQ(c["files"][0]["patches"], json::array());  // the existing field, unchanged
+  // The human table names the verdict too.
+  const auto text = RunCommand(kCli + " check " + dir + "/m.json");
+  EXPECT_NE(text.out.find("convex on the box"), std::string::npos) << text.out;
+}
+
+TEST(MeshCli, ConcaveKinkIsReportedNotConvex) {
+  const std::string dir = testsupport::ScratchDir("mesh_kink");
+  implicitfit::BernsteinGrid g;
+  g.origin = Eigen::Vector3d(-1.0, -0.5, -0.5);
+  g.cell = 1.0;
+  g.cells = {2, 1, 1};
+  implicitfit::CartesianQuadric left, right;
+  left.A = right.A = Eigen::Matrix3d::Identity();
+  left.c = right.c = -0.16;
+  left.b = Eigen::Vector3d(0.15, 0, 0);
+  right.b = Eigen::Vector3d(-0.15, 0, 0);
+  std::vector<double> b;
+  for (long long t = 0; t < g.NumTetrahedra(); ++t) {
+    const auto bt = implicitfit::QuadricToBernstein(t < 6 ? left : right, g.TetrahedronOf(t), 2);
+    b.insert(b.end(), bt.begin(), bt.end());
+  }
+  const json doc = {{"format", "implicitfit-model"},
+                    {"version", 1},
+                    {"root", {{"type", "bernstein_mesh"},
+                              {"degree", 2},
+                              {"grid", {{"origin", {-1.0, -0.5, -0.5}}, {"cell", 1.0}, {"cells", {2, 1, 1}}}},
+                              {"continuity", 0},
+                              {"control_points", b}}}};
+  WriteText(dir + "/kink.json", doc.dump());
+  const auto check = RunCommand(kCli + " check " + dir + "/kink.json --json --sample 3000");
+  EXPECT_EQ(check.exit_code, 1) << check.err;
+  const json c = json::parse(check.out);
+  EXPECT_FALSE(c["convex"].get<bool>());
+  const json& mesh = c["files"][0]["meshes"][0];
+  EXPECT_EQ(mesh["verdict"], "not convex (C1 defect)");
+  EXPECT_EQ(mesh["certified_tetrahedra"], 12);
+  EXPECT_GT(mesh["sample"]["violations"].get<int>(), 0);
+}
+
+TEST(MeshCli, InvalidOptionsExit2AndNoModel) {
+  const std::string dir = testsupport::ScratchDir("mesh_bad");
+  const std::string cloud = SphereCloud(dir, "s", 1.0, 2);
+  auto r = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --convex --continuity 0 --out " + dir + "/m.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--continuity"), std::string::npos) << r.err;
+  r = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --cell 0.5 --out " + dir + "/m.json");
+  EXPECT_EQ(r.exit_code, 2);
+  r = RunCommand(kCli + " fit " + dir + "/missing.xyz --model patch-mesh --out " + dir + "/m.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(FileExists(dir + "/m.json"));
+}
+
+TEST(MeshCli, BatchFitsMeshesAndPatchesAndResumes) {
+  const std::string dir = testsupport::ScratchDir("mesh_batch");
+  const std::string a = SphereCloud(dir, "a", 1.0, 3), b = SphereCloud(dir, "b", 0.8, 4);
+  WriteText(dir + "/bad.xyz", "1 2\n");
+  const std::string out = dir + "/out";
+  auto r = RunCommand(kCli + " batch " + a + " " + b + " " + dir + "/bad.xyz --model patch-mesh --cells 2 --convex "
+                      "--out-dir " + out + " --jobs 1");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // the bad input fails alone
+  for (const char* name : {"a", "b"}) {
+    const json rep = json::parse(Slurp(out + "/" + name + ".report.json"));
+    EXPECT_TRUE(rep["certified_convex"].get<bool>()) << name;
+    EXPECT_EQ(json::parse(Slurp(out + "/" + name + ".model.json"))["root"]["type"], "bernstein_mesh");
+  }
+  EXPECT_FALSE(FileExists(out + "/bad.model.json"));
+  r = RunCommand(kCli + " batch " + a + " " + b + " --model patch-mesh --cells 2 --convex --out-dir " + out +
+                 " --resume --jobs 1");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::string summary = Slurp(out + "/summary.csv");
+  EXPECT_NE(summary.find("a.xyz,skipped"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("b.xyz,skipped"), std::string::npos) << summary;
+  const std::string out2 = dir + "/out2";
+  r = RunCommand(kCli + " batch " + a + " " + b + " --model quadric-patch --convex --out-dir " + out2);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json rep = json::parse(Slurp(out2 + "/a.report.json"));
+  EXPECT_TRUE(rep["certified_convex"].get<bool>());
+  EXPECT_EQ(json::parse(Slurp(out2 + "/a.model.json"))["root"]["type"], "bernstein_patch");
+  r = RunCommand(kCli + " batch " + a + " --model sphere --convex --out-dir " + out2);
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+}  // namespace
