@@ -135,7 +135,6 @@ struct Hypothesizer {
       case NodeType::kBlobs:
       case NodeType::kSkeletonOffset:
       case NodeType::kPartition:
-    case NodeType::kBernsteinMesh:
       case NodeType::kBernsteinMesh:
         return false;  // no minimal-sample hypothesis (PrimitiveFitOptions::IsValid refuses them)
     }
