@@ -77,6 +77,7 @@ int RunPatchFit(const ModelFitRequest& request) {
                            {"seconds", r.seconds},
                            {"normals", normals}};
   if (options.convex) report["unconstrained_rms_distance"] = r.unconstrained_rms;
+  report["termination"] = FitTerminationName(r.termination);  // CONVERGENCE, NO_CONVERGENCE, FAILURE
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
     std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << r.message << "\n";
