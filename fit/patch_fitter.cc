@@ -181,10 +181,30 @@ double Rms(int k, const Tetrahedron& tet, const std::vector<double>& b, const st
   return std::sqrt(ss / points.size());
 }
 
+// What a solve ended with (fit/fit_termination.h) and a message saying so.
+struct SolveOutcome {
+  FitTermination termination = FitTermination::kFailure;
+  std::string message;
+};
+
+SolveOutcome DescribeSolve(const ceres::Solver::Summary& summary) {
+  switch (summary.termination_type) {
+    case ceres::CONVERGENCE:
+    case ceres::USER_SUCCESS: return {FitTermination::kConverged, "converged"};
+    case ceres::NO_CONVERGENCE:
+      return {FitTermination::kNoConvergence,
+              "no convergence within " + std::to_string(std::max<int>(0, static_cast<int>(summary.iterations.size()) - 1)) +
+                  " iterations (the iteration limit): " + summary.message};
+    case ceres::FAILURE:
+    case ceres::USER_FAILURE: break;
+  }
+  return {FitTermination::kFailure, summary.message};
+}
+
 template <int N>
 std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b, const std::vector<Vec>& points,
                            const std::vector<Vec>& normals, const PatchFitOptions& options, double loss_scale,
-                           bool guard, std::string* message) {
+                           bool guard, SolveOutcome* outcome) {
   ceres::Problem problem;
   AddPointBlocks<PatchPointResidual<N>, N>(
       &problem, points.size(), !normals.empty(),
@@ -198,24 +218,25 @@ std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b,
       problem.SetManifold(b.data(), NewLinearSubspaceManifold(basis));
   }
   const ceres::Solver::Summary summary = SolvePatchProblem(&problem, options.max_iterations);
-  if (message) *message = summary.IsSolutionUsable() ? "converged" : summary.message;
+  if (outcome) *outcome = DescribeSolve(summary);
   return b;
 }
 
 std::vector<double> RefineAnyDegree(int k, const Tetrahedron& tet, const std::vector<double>& b,
                                     const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                    const PatchFitOptions& options, double loss_scale, bool guard, std::string* message) {
+                                    const PatchFitOptions& options, double loss_scale, bool guard, SolveOutcome* outcome) {
   switch (k) {
-    case 2: return Refine<10>(k, tet, b, points, normals, options, loss_scale, guard, message);
-    case 3: return Refine<20>(k, tet, b, points, normals, options, loss_scale, guard, message);
-    default: return Refine<35>(k, tet, b, points, normals, options, loss_scale, guard, message);
+    case 2: return Refine<10>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
+    case 3: return Refine<20>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
+    default: return Refine<35>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
   }
 }
 
 // Degree-2 convex fit by the exact parameterisation, started from b (any quadric patch).
 std::vector<double> ConvexQuadricFit(const Tetrahedron& tet, const std::vector<double>& b,
                                      const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                     const PatchFitOptions& options, double loss_scale) {
+                                     const PatchFitOptions& options, double loss_scale,
+                                     SolveOutcome* outcome) {
   double scale = 0;
   for (double v : b) scale = std::max(scale, std::abs(v));
   const double margin = 1e-5 * scale;
@@ -238,7 +259,7 @@ std::vector<double> ConvexQuadricFit(const Tetrahedron& tet, const std::vector<d
                                           margin};
       },
       loss_scale, z.data());
-  SolvePatchProblem(&problem, options.max_iterations);
+  *outcome = DescribeSolve(SolvePatchProblem(&problem, options.max_iterations));
   std::vector<double> out(10);
   ConvexQuadricControlPoints(z.data(), margin, out.data());
   return out;
@@ -248,7 +269,7 @@ std::vector<double> ConvexQuadricFit(const Tetrahedron& tet, const std::vector<d
 
 bool PatchFitOptions::IsValid(std::string* error) const {
   if (degree < 2 || degree > 4) {
-    if (error) *error = "--degree must be 2, 3 or 4 for fitting";
+    if (error) *error = "degree must be 2, 3 or 4 for fitting";
     return false;
   }
   if (convex && !constraints.empty()) {
@@ -327,8 +348,8 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
   }
   const double init_rms = Rms(k, tet, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * init_rms, 1e-9 * R);
-  std::string message;
-  std::vector<double> free_fit = RefineAnyDegree(k, tet, b, points, normals, options, loss_scale, false, &message);
+  SolveOutcome outcome;  // of the last solve
+  std::vector<double> free_fit = RefineAnyDegree(k, tet, b, points, normals, options, loss_scale, false, &outcome);
   double angle;
   const double free_rms = Rms(k, tet, free_fit, points, normals, &angle);
 
@@ -337,10 +358,10 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
     result.unconstrained_rms = free_rms;
     // Degree 2 first (exact parameterisation); degree >= 3 continues from it, elevated.
     std::vector<double> b2 = k == 2 ? free_fit : LinearInitialisation(2, tet, points, normals, h);
-    std::vector<double> convex2 = ConvexQuadricFit(tet, b2, points, normals, options, loss_scale);
+    std::vector<double> convex2 = ConvexQuadricFit(tet, b2, points, normals, options, loss_scale, &outcome);
     fitted = convex2;
     for (int d = 2; d < k; ++d) fitted = ElevateDegree(d, fitted);
-    if (k >= 3) fitted = RefineAnyDegree(k, tet, fitted, points, normals, options, loss_scale, true, &message);
+    if (k >= 3) fitted = RefineAnyDegree(k, tet, fitted, points, normals, options, loss_scale, true, &outcome);
   }
   result.control_points = fitted;
   result.rms = Rms(k, tet, fitted, points, normals, &result.mean_normal_angle_deg,
@@ -348,13 +369,17 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
   const ConvexityCertificate cert = CertifyConvexity(k, fitted.data());
   result.certified_convex = cert.convex;
   result.min_eigenvalue = cert.min_eigenvalue;
-  if (options.convex && !cert.convex) {
+  result.termination = outcome.termination;
+  if (outcome.termination == FitTermination::kFailure) {
+    result.success = false;
+    result.message = outcome.message;
+  } else if (options.convex && !cert.convex) {
     result.success = false;
     result.message = "the convexity constraint could not be met (smallest A^mu eigenvalue " +
                      std::to_string(cert.min_eigenvalue) + ")";
   } else {
     result.success = true;
-    result.message = message;
+    result.message = outcome.message;
   }
   (void)angle;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

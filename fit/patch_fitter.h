@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "fit/patch_shape_constraints.h"
+#include "fit/fit_termination.h"
 #include "model/bernstein_patch.h"
 #include "model/model.h"
 
@@ -49,7 +50,10 @@ struct PatchFitOptions {
 
 struct PatchFitResult {
   bool success = false;
-  std::string message;
+  std::string message;                // "converged", "no convergence within ...", or why it failed
+  // How the last solve ended: NO_CONVERGENCE (the iteration limit came first) is a usable,
+  // successful result that is not converged; FAILURE makes success false.
+  FitTermination termination = FitTermination::kFailure;
   int degree = 0;
   Tetrahedron tetrahedron;
   std::vector<double> control_points;

@@ -1,6 +1,6 @@
 // The base of the residual blocks that stand for a chunk of points of a primitive fit
 // (fit/compressed_distance_cost.h, and the per-point reference form of the tests,
-// tests/fit/batched_distance_cost.h): the points, the chunk's indices into them, and the
+// fit/batched_distance_cost.h): the points, the chunk's indices into them, and the
 // primitive's parameter blocks (its named fields in flat order, e.g. cylinder: point 3, axis 3,
 // radius 1, so manifolds and bounds can be set per field).
 #pragma once

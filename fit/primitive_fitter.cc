@@ -486,9 +486,9 @@ bool PrimitiveFitOptions::IsValid(std::string* error) const {
       if (name == f.name) {
         known = true;
         if (static_cast<int>(value.size()) != f.size)
-          return fail("--fix " + name + " takes " + std::to_string(f.size) + " value(s)");
+          return fail("fixed field " + name + " takes " + std::to_string(f.size) + " value(s)");
       }
-    if (!known) return fail("--fix: '" + name + "' is not a parameter of a " + NodeTypeName(k));
+    if (!known) return fail("fixed field '" + name + "' is not a parameter of a " + NodeTypeName(k));
   }
   return true;
 }

@@ -112,5 +112,24 @@ TEST(PatchFitter, EnclosingTetrahedronContainsTheCloud) {
   }
 }
 
+// The patch fitter says when the iteration limit stopped it (it used to say "converged"): one
+// iteration from the linear start on a noisy cubic fit cannot meet Ceres' tolerances.
+TEST(PatchFitter, ReportsNoConvergenceWhenTheIterationLimitStopsIt) {
+  const ConvexCase c = ConvexCases()[0];
+  const SampledCloud s = Sample(c.type, c.params, 0.005, 7, c.view, c.angle, c.lo, c.hi);
+  PatchFitOptions o;
+  o.degree = 3;
+  const PatchFitResult full = FitBernsteinPatch(s.cloud.points, s.cloud.normals, o);
+  ASSERT_TRUE(full.success) << full.message;
+  EXPECT_EQ(full.termination, FitTermination::kConverged) << full.message;
+  EXPECT_EQ(full.message, "converged");
+  o.max_iterations = 1;
+  const PatchFitResult cut = FitBernsteinPatch(s.cloud.points, s.cloud.normals, o);
+  EXPECT_TRUE(cut.success) << cut.message;  // usable, not converged
+  EXPECT_EQ(cut.termination, FitTermination::kNoConvergence) << cut.message;
+  EXPECT_NE(cut.message.find("no convergence within 1 iterations"), std::string::npos) << cut.message;
+  EXPECT_STREQ(FitTerminationName(cut.termination), "NO_CONVERGENCE");
+}
+
 }  // namespace
 }  // namespace implicitfit
