@@ -10,7 +10,8 @@ trap 'rm -rf "$prefix"' EXIT
 [ -f build/CMakeCache.txt ] || cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)" --target implicitfit implicitfit_model implicitfit_fit \
   implicitfit_datasets
-cmake --install build --prefix "$prefix" >/dev/null
+# Everything but the Python module (component "python" goes to the system site-packages).
+cmake --install build --prefix "$prefix" --component Unspecified >/dev/null
 echo "examples: installed to $prefix" >&2
 cmake -S examples -B "$prefix/examples-build" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
