@@ -102,7 +102,7 @@ int Run(const CheckOptions& options) {
     tree_certified[f] = certified;
     // A file without patches is judged by its tree certificate (not vacuously convex) unless
     // --patches-only asks for the old verdict.
-    if (reports[f].empty() && !options.patches_only) {
+    if (reports[f].empty() && meshes[f].empty() && !options.patches_only) {
       all_convex &= tree_certified[f];
       if (!tree_certified[f])
         std::cerr << "implicitfit check: " << options.files[f]
@@ -161,11 +161,12 @@ int Run(const CheckOptions& options) {
         if (options.sample > 0) std::printf(" %11d %10d", r.sample.zero_points, r.sample.violations);
         std::printf("\n");
       }
-    for (size_t f = 0; f < models.size(); ++f)
+    for (size_t f = 0; f < models.size(); ++f) {
       for (const MeshCheck& m : meshes[f]) PrintMeshCheck(options.files[f], m);
-      if (reports[f].empty())
+      if (reports[f].empty() && meshes[f].empty())
         std::printf("%-24s %-28s tree: %s\n", options.files[f].c_str(), "(no patches)",
                     tree_verdicts[f]["class"].get<std::string>().c_str());
+    }
     bool patches_convex = true;
     for (const auto& file_reports : reports)
       for (const PatchReport& r : file_reports) patches_convex &= r.certificate.convex;
