@@ -62,6 +62,16 @@ CommandAction AddFitCommand(CLI::App& app) {
       ->delimiter(',')
       ->expected(12)
       ->group("Bernstein patches");
+  auto* cells_opt = cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest edge of the cloud's box (default 4)")
+                        ->check(CLI::Range(1, 200))
+                        ->group("Bernstein patches");
+  cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length (instead of --cells)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(cells_opt)
+      ->group("Bernstein patches");
+  cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 (C0) or 1 (C1, default)")
+      ->check(CLI::Range(0, 1))
+      ->group("Bernstein patches");
   cmd->add_option("--through-vertex", a->through_vertices,
                   "Patch passes exactly through tetrahedron vertex I (1..4): b_{k e_I} = 0")
       ->check(CLI::Range(1, 4))
