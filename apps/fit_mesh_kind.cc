@@ -31,8 +31,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const MeshFitResult r = FitBernsteinMesh(cloud.points, cloud.normals, options);
   const BernsteinGrid& g = r.grid;
-  ModelKindFit out;
-  out.report = {{"success", r.success},
+  const nlohmann::json report = {{"success", r.success},
                 {"message", r.message},
                 {"points", cloud.size()},
                 {"inliers", cloud.size()},
@@ -54,13 +53,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
                 {"kept_initialisation", r.kept_initialisation},
                 {"seconds", r.seconds},
                 {"normals", normals}};
-  out.success = r.success;
-  out.message = r.message;
-  out.points = cloud.size();
-  out.rms = r.rms;
-  out.certified_convex = r.certified_convex;
-  if (r.success) out.model = r.ToModel();
-  return out;
+  return MakeModelKindFit(r, report, cloud.size());
 }
 
 int RunMeshFit(const ModelFitRequest& request) {

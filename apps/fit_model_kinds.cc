@@ -149,15 +149,7 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request) {
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const PatchFitResult r = FitBernsteinPatch(cloud.points, cloud.normals, options);
-  ModelKindFit out;
-  out.report = PatchFitReport(r, options, cloud.size(), normals);
-  out.success = r.success;
-  out.message = r.message;
-  out.points = cloud.size();
-  out.rms = r.rms;
-  out.certified_convex = r.certified_convex;
-  if (r.success) out.model = r.ToModel();
-  return out;
+  return MakeModelKindFit(r, PatchFitReport(r, options, cloud.size(), normals), cloud.size());
 }
 
 int RunPatchFit(const ModelFitRequest& request) {

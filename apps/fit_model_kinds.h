@@ -45,6 +45,20 @@ struct ModelKindFit {
   nlohmann::json report;
   Model model;
 };
+// The common fields of a patch or patch-mesh fit result (success, message, rms,
+// certified_convex, ToModel()) with its report.
+template <typename Result>
+ModelKindFit MakeModelKindFit(const Result& r, nlohmann::json report, size_t points) {
+  ModelKindFit out;
+  out.report = std::move(report);
+  out.success = r.success;
+  out.message = r.message;
+  out.points = points;
+  out.rms = r.rms;
+  out.certified_convex = r.certified_convex;
+  if (r.success) out.model = r.ToModel();
+  return out;
+}
 ModelKindFit FitPatchCloud(const ModelFitRequest& request);
 ModelKindFit FitMeshCloud(const ModelFitRequest& request);
 
