@@ -43,7 +43,8 @@ struct BatchArgs {
 };
 
 // Writes the summary, prints the human summary; the exit code.
-int Finish(const std::vector<BatchOutcome>& outcomes, const std::string& summary_path, double seconds) {
+int Finish(const std::vector<BatchOutcome>& outcomes, const std::string& summary_path,
+           double seconds) {
   WriteFileAtomically(summary_path, SummaryCsv(outcomes));
   size_t ok = 0, skipped = 0, failed = 0, points = 0;
   for (const BatchOutcome& o : outcomes) {
@@ -53,9 +54,11 @@ int Finish(const std::vector<BatchOutcome>& outcomes, const std::string& summary
     if (o.status != BatchStatus::kSkipped) points += o.points;
   }
   const size_t processed = outcomes.size() - skipped;
-  std::printf("batch: %zu inputs: %zu fitted, %zu skipped, %zu failed in %.2f s (%.2f inputs/s, %.0f points/s)\n",
-              outcomes.size(), ok, skipped, failed, seconds, seconds > 0 ? processed / seconds : 0.0,
-              seconds > 0 ? points / seconds : 0.0);
+  std::printf(
+      "batch: %zu inputs: %zu fitted, %zu skipped, %zu failed in %.2f s (%.2f inputs/s, %.0f "
+      "points/s)\n",
+      outcomes.size(), ok, skipped, failed, seconds, seconds > 0 ? processed / seconds : 0.0,
+      seconds > 0 ? points / seconds : 0.0);
   for (const BatchOutcome& o : outcomes)
     if (!o.Succeeded()) std::printf("  %s %s\n", BatchStatusName(o.status), o.Failure().c_str());
   std::printf("summary: %s\n", summary_path.c_str());
@@ -69,19 +72,27 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 CommandAction AddBatchCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("batch", "Fit one model per cloud over many clouds, in parallel, resumably");
+  auto* cmd = app.add_subcommand(
+      "batch", "Fit one model per cloud over many clouds, in parallel, resumably");
   auto a = std::make_shared<BatchArgs>();
-  cmd->add_option("INPUTS", a->inputs, "Cloud files and directories (every supported cloud directly inside)");
-  cmd->add_option("--manifest", a->manifests, "A text file listing one cloud path per line (relative to it); repeatable")
+  cmd->add_option("INPUTS", a->inputs,
+                  "Cloud files and directories (every supported cloud directly inside)");
+  cmd->add_option("--manifest", a->manifests,
+                  "A text file listing one cloud path per line (relative to it); repeatable")
       ->allow_extra_args(false);  // one file per --manifest: later words stay INPUTS
-  cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, patch-mesh; or scene (detect every primitive of each cloud)")->required();
-  cmd->add_flag("--convex", a->convex, "Bernstein kinds: constrain and certify convexity")->group("Bernstein patches");
+  cmd->add_option("--model", a->kind,
+                  "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, "
+                  "patch-mesh; or scene (detect every primitive of each cloud)")
+      ->required();
+  cmd->add_flag("--convex", a->convex, "Bernstein kinds: constrain and certify convexity")
+      ->group("Bernstein patches");
   cmd->add_option("--degree", a->degree, "Bernstein kinds: patch degree (as `fit --degree`)")
       ->check(CLI::Range(2, 5))
       ->group("Bernstein patches");
-  auto* cells_opt = cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest box edge")
-                        ->check(CLI::Range(1, 200))
-                        ->group("Bernstein patches");
+  auto* cells_opt =
+      cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest box edge")
+          ->check(CLI::Range(1, 200))
+          ->group("Bernstein patches");
   cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length")
       ->check(CLI::PositiveNumber)
       ->excludes(cells_opt)
@@ -89,25 +100,36 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 or 1 (default)")
       ->check(CLI::Range(0, 1))
       ->group("Bernstein patches");
-  cmd->add_option("--out-dir", a->out_dir, "Folder of the models, reports and summary.csv (created)")->required();
-  cmd->add_option("--jobs", a->jobs, "Inputs fitted at once (default: the number of cores; under MPI one per rank)")->check(CLI::PositiveNumber);
-  cmd->add_flag("--resume", a->resume, "Skip inputs whose model and successful report are already complete");
-  cmd->add_option("--shard", a->shard, "i/N: only the inputs whose 0-based index k has k mod N = i - 1 (1 <= i <= N)");
-  cmd->add_option("--seed", a->seed, "Random seed, the same for every input (as `fit --seed`)");
-  cmd->add_option("--threshold", a->threshold, "Initial inlier band (default: 1% of each cloud's bounding-box diagonal)")
+  cmd->add_option("--out-dir", a->out_dir,
+                  "Folder of the models, reports and summary.csv (created)")
+      ->required();
+  cmd->add_option("--jobs", a->jobs,
+                  "Inputs fitted at once (default: the number of cores; under MPI one per rank)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--fix", a->fixes, "Keep a parameter constant in every fit, e.g. --fix radius=2; repeatable")
+  cmd->add_flag("--resume", a->resume,
+                "Skip inputs whose model and successful report are already complete");
+  cmd->add_option("--shard", a->shard,
+                  "i/N: only the inputs whose 0-based index k has k mod N = i - 1 (1 <= i <= N)");
+  cmd->add_option("--seed", a->seed, "Random seed, the same for every input (as `fit --seed`)");
+  cmd->add_option("--threshold", a->threshold,
+                  "Initial inlier band (default: 1% of each cloud's bounding-box diagonal)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--fix", a->fixes,
+                  "Keep a parameter constant in every fit, e.g. --fix radius=2; repeatable")
       ->allow_extra_args(false);
-  cmd->add_option("--estimator", a->estimator, "robust (default), least-squares or minimum-zone, as `fit --estimator`");
+  cmd->add_option("--estimator", a->estimator,
+                  "robust (default), least-squares or minimum-zone, as `fit --estimator`");
   return [a]() {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
     const bool scene = a->kind == "scene";  // one detection per input (apps/batch_scene.cc)
     if (scene && !a->fixes.empty()) throw InputError("--fix does not apply to --model scene");
     const bool model_kind = IsPatchKind(a->kind) || IsMeshKind(a->kind);
-    if (!model_kind && a->convex) throw InputError("--convex applies to quadric-patch, cubic-patch and patch-mesh");
-    PrimitiveFitOptions fit =
-        model_kind ? PrimitiveFitOptions{}
-                   : FitOptionsFromArguments(scene ? "plane" : a->kind, a->seed, scene ? 0.0 : a->threshold, a->fixes);
+    if (!model_kind && a->convex)
+      throw InputError("--convex applies to quadric-patch, cubic-patch and patch-mesh");
+    PrimitiveFitOptions fit = model_kind
+                                  ? PrimitiveFitOptions{}
+                                  : FitOptionsFromArguments(scene ? "plane" : a->kind, a->seed,
+                                                            scene ? 0.0 : a->threshold, a->fixes);
     SetEstimatorFromArgument(a->estimator, &fit);
 
     const std::vector<BatchInput> all = ExpandBatchInputs(a->inputs, a->manifests);
@@ -117,11 +139,13 @@ CommandAction AddBatchCommand(CLI::App& app) {
     if (!a->shard.empty()) {
       const Shard shard = ParseShard(a->shard);
       inputs = SelectShard(all, shard);
-      summary_name = "summary-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".csv";
+      summary_name =
+          "summary-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".csv";
     }
     std::error_code ec;
     std::filesystem::create_directories(a->out_dir, ec);
-    if (!std::filesystem::is_directory(a->out_dir)) throw FileError(a->out_dir, "cannot create the output folder");
+    if (!std::filesystem::is_directory(a->out_dir))
+      throw FileError(a->out_dir, "cannot create the output folder");
 
     BatchOptions options;
     options.out_dir = a->out_dir;
@@ -131,7 +155,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.detect.threshold = scene ? a->threshold : 0.0;
     options.jobs = ThreadCountOrDefault(a->jobs);
     options.fit = fit;
-    options.fit.num_threads = options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
+    options.fit.num_threads =
+        options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
     options.detect.num_threads = options.fit.num_threads;
     if (model_kind) {
       if (!a->fixes.empty()) throw InputError("--fix applies to primitive kinds");

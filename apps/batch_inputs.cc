@@ -27,7 +27,8 @@ void AddDirectory(const std::string& dir, std::vector<Entry>* entries) {
   std::vector<std::string> found;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (IsCloudFileName(it->path().string()) && !it->is_directory()) found.push_back(it->path().string());
+    if (IsCloudFileName(it->path().string()) && !it->is_directory())
+      found.push_back(it->path().string());
   if (ec) throw FileError(dir, "cannot list the directory: " + ec.message());
   std::sort(found.begin(), found.end());
   for (const std::string& path : found) entries->push_back({path, ""});
@@ -48,7 +49,8 @@ void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
       line = Trim(line.substr(0, tab));
       NodeType type;
       if (!FittableKindFromName(e.kind, &type))
-        throw LineError(manifest, number, "unknown kind '" + e.kind + "' (plane, sphere, cylinder, cone, torus)");
+        throw LineError(manifest, number,
+                        "unknown kind '" + e.kind + "' (plane, sphere, cylinder, cone, torus)");
     }
     const fs::path p(line);
     e.path = p.is_absolute() || base.empty() ? line : (base / p).string();
@@ -61,7 +63,8 @@ void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
 
 bool IsCloudFileName(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".xyz" || ext == ".pwn" || ext == ".txt" || ext == ".ply" || ext == ".pcd";
 }
 
@@ -98,7 +101,9 @@ std::vector<BatchInput> ExpandBatchInputs(const std::vector<std::string>& inputs
 Shard ParseShard(const std::string& text) {
   Shard shard;
   const size_t slash = text.find('/');
-  const auto bad = [&]() { return InputError("--shard " + text + ": expected i/N with 1 <= i <= N"); };
+  const auto bad = [&]() {
+    return InputError("--shard " + text + ": expected i/N with 1 <= i <= N");
+  };
   if (slash == std::string::npos) throw bad();
   try {
     size_t used_i = 0, used_n = 0;
@@ -116,7 +121,8 @@ Shard ParseShard(const std::string& text) {
 std::vector<BatchInput> SelectShard(const std::vector<BatchInput>& all, const Shard& shard) {
   std::vector<BatchInput> mine;
   for (const BatchInput& in : all)
-    if (in.index % static_cast<size_t>(shard.count) == static_cast<size_t>(shard.index - 1)) mine.push_back(in);
+    if (in.index % static_cast<size_t>(shard.count) == static_cast<size_t>(shard.index - 1))
+      mine.push_back(in);
   return mine;
 }
 

@@ -21,10 +21,10 @@
 namespace implicitfit {
 
 struct BatchInput {
-  std::string path;    // the cloud file
-  std::string name;    // output base name: DIR/<name>.model.json, DIR/<name>.report.json
-  size_t index = 0;    // position in the full (unsharded) list
-  std::string kind;    // from a manifest line; empty: --model
+  std::string path;  // the cloud file
+  std::string name;  // output base name: DIR/<name>.model.json, DIR/<name>.report.json
+  size_t index = 0;  // position in the full (unsharded) list
+  std::string kind;  // from a manifest line; empty: --model
 };
 
 // Throws InputError for an unreadable directory or manifest, an unknown KIND in a manifest
@@ -33,7 +33,7 @@ std::vector<BatchInput> ExpandBatchInputs(const std::vector<std::string>& inputs
                                           const std::vector<std::string>& manifests);
 
 struct Shard {
-  int index = 1;   // 1-based
+  int index = 1;  // 1-based
   int count = 1;
 };
 

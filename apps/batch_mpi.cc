@@ -18,9 +18,11 @@ int EnvInt(const char* name) {
 }
 
 std::string EncodeOutcome(size_t index, const BatchOutcome& o) {
-  return nlohmann::json{{"index", index}, {"status", static_cast<int>(o.status)}, {"rms", o.rms},
-                        {"inliers", o.inliers}, {"points", o.points}, {"seconds", o.seconds},
-                        {"error", o.error}}.dump();
+  return nlohmann::json{{"index", index},     {"status", static_cast<int>(o.status)},
+                        {"rms", o.rms},       {"inliers", o.inliers},
+                        {"points", o.points}, {"seconds", o.seconds},
+                        {"error", o.error}}
+      .dump();
 }
 
 // Fills the outcome at its index; returns the index.
@@ -48,7 +50,8 @@ int ReceiveResult(const std::vector<BatchInput>& inputs, std::vector<BatchOutcom
   int length = 0;
   MPI_Get_count(&status, MPI_CHAR, &length);
   std::string text(static_cast<size_t>(length), '\0');
-  MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, kResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, kResult, MPI_COMM_WORLD,
+           MPI_STATUS_IGNORE);
   const size_t index = DecodeOutcome(text, inputs, outcomes);
   if (on_done) on_done((*outcomes)[index]);
   return status.MPI_SOURCE;
@@ -60,7 +63,8 @@ void SendWork(int worker, size_t index) {
 }
 void SendStop(int worker) { MPI_Send(nullptr, 0, MPI_CHAR, worker, kStop, MPI_COMM_WORLD); }
 
-std::vector<BatchOutcome> Coordinate(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+std::vector<BatchOutcome> Coordinate(const std::vector<BatchInput>& inputs,
+                                     const BatchOptions& options,
                                      const BatchProgressCallback& on_done, int size) {
   RemoveStaleTemporaries(inputs, options.out_dir);  // before any worker starts writing
   std::vector<BatchOutcome> outcomes(inputs.size());
@@ -71,7 +75,8 @@ std::vector<BatchOutcome> Coordinate(const std::vector<BatchInput>& inputs, cons
   std::vector<int> queued(size, 0);
   int busy = 0;
   for (int worker = 1; worker < size; ++worker) {
-    for (int k = 0; k < kQueued && next < inputs.size(); ++k, ++queued[worker]) SendWork(worker, next++);
+    for (int k = 0; k < kQueued && next < inputs.size(); ++k, ++queued[worker])
+      SendWork(worker, next++);
     if (queued[worker] == 0) SendStop(worker);
     busy += queued[worker] > 0;
   }
@@ -126,7 +131,8 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() { MPI_Finalize(); }
 
-std::vector<BatchOutcome> RunBatchOverMpi(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+std::vector<BatchOutcome> RunBatchOverMpi(const std::vector<BatchInput>& inputs,
+                                          const BatchOptions& options,
                                           const BatchProgressCallback& on_done) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

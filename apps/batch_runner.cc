@@ -27,7 +27,8 @@ std::string ReportPath(const BatchOptions& o, const BatchInput& in) {
 }
 
 // The figures of a complete earlier result, or false when it must be (re)fitted.
-bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, NodeType kind, BatchOutcome* out) {
+bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, NodeType kind,
+                         BatchOutcome* out) {
   try {
     const Model model = ReadModelFile(ModelPath(o, in));
     if (model.root() < 0 || model.nodes()[model.root()].type != kind) return false;
@@ -117,10 +118,14 @@ BatchOutcome ProcessModelKindInput(const BatchInput& in, const BatchOptions& o) 
 
 const char* BatchStatusName(BatchStatus status) {
   switch (status) {
-    case BatchStatus::kOk: return "ok";
-    case BatchStatus::kFailed: return "failed";
-    case BatchStatus::kError: return "error";
-    case BatchStatus::kSkipped: return "skipped";
+    case BatchStatus::kOk:
+      return "ok";
+    case BatchStatus::kFailed:
+      return "failed";
+    case BatchStatus::kError:
+      return "error";
+    case BatchStatus::kSkipped:
+      return "skipped";
   }
   return "error";
 }
@@ -136,7 +141,8 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   if (!in.kind.empty() && !FittableKindFromName(in.kind, &fit_options.kind))
     invalid = "unknown kind " + in.kind;
   else if (!fit_options.IsValid(&invalid))
-    invalid = std::string("options invalid for a ") + NodeTypeName(fit_options.kind) + " fit: " + invalid;
+    invalid =
+        std::string("options invalid for a ") + NodeTypeName(fit_options.kind) + " fit: " + invalid;
   if (!invalid.empty()) {
     out.error = invalid;  // e.g. a --fix field the manifest's kind does not have
     return out;
@@ -159,7 +165,8 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
     } else {
       fs::remove(model_path, ignored);
       out.status = BatchStatus::kFailed;
-      out.error = std::string(NodeTypeName(fit_options.kind)) + " fit failed: " + fit.result.message;
+      out.error =
+          std::string(NodeTypeName(fit_options.kind)) + " fit failed: " + fit.result.message;
     }
     WriteFileAtomically(report_path, fit.report.dump(2) + "\n");
   } catch (const std::exception& e) {
@@ -185,12 +192,14 @@ void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::st
   for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string file = it->path().filename().string();
     const size_t tmp = file.rfind(".tmp.");
-    if (tmp != std::string::npos && prefixes.count(file.substr(0, tmp + 5))) stale.push_back(it->path());
+    if (tmp != std::string::npos && prefixes.count(file.substr(0, tmp + 5)))
+      stale.push_back(it->path());
   }
   for (const fs::path& p : stale) fs::remove(p, ec);
 }
 
-std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
+                                   const BatchOptions& options,
                                    const BatchProgressCallback& on_done) {
   RemoveStaleTemporaries(inputs, options.out_dir);
   std::vector<BatchOutcome> outcomes(inputs.size());

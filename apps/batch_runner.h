@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "apps/batch_inputs.h"
-#include "fit/primitive_detector.h"
 #include "apps/fit_model_kinds.h"
+#include "fit/primitive_detector.h"
 #include "fit/primitive_fitter.h"
 
 namespace implicitfit {
@@ -33,27 +33,29 @@ enum class BatchStatus { kOk, kFailed, kError, kSkipped };
 const char* BatchStatusName(BatchStatus status);
 
 struct BatchOutcome {
-  std::string input, name;           // the cloud path and its output name
+  std::string input, name;  // the cloud path and its output name
   BatchStatus status = BatchStatus::kError;
   double rms = 0.0;
   size_t inliers = 0, points = 0;
-  double seconds = 0.0;              // wall time in this run
-  std::string error;                 // why it failed (empty when ok or skipped)
+  double seconds = 0.0;  // wall time in this run
+  std::string error;     // why it failed (empty when ok or skipped)
   bool HasFigures() const { return status != BatchStatus::kError; }
   bool Succeeded() const { return status == BatchStatus::kOk || status == BatchStatus::kSkipped; }
   // "<input>: <error>" (the input named once, also when the error already starts with it).
-  std::string Failure() const { return error.rfind(input + ":", 0) == 0 ? error : input + ": " + error; }
+  std::string Failure() const {
+    return error.rfind(input + ":", 0) == 0 ? error : input + ": " + error;
+  }
 };
 
 struct BatchOptions {
-  PrimitiveFitOptions fit;           // used for every input, with the input's own kind when it
-                                     // has one (same seed: results do not depend on the order
-                                     // or the number of jobs)
-  std::string out_dir;               // must exist
-  int jobs = 1;                      // threads of the pool, >= 1
-  bool resume = false;               // skip inputs whose outputs are complete
-  bool scene = false;                // `--model scene`: one detection per input (apps/detect_job.h)
-  DetectionOptions detect;           // used for every input when scene is set
+  PrimitiveFitOptions fit;  // used for every input, with the input's own kind when it
+                            // has one (same seed: results do not depend on the order
+                            // or the number of jobs)
+  std::string out_dir;      // must exist
+  int jobs = 1;             // threads of the pool, >= 1
+  bool resume = false;      // skip inputs whose outputs are complete
+  bool scene = false;       // `--model scene`: one detection per input (apps/detect_job.h)
+  DetectionOptions detect;  // used for every input when scene is set
   // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit_model_kinds.h): when set,
   // every input is fitted by model_fit(cloud path) instead of `fit`; resume then also requires
   // the model's root to be model_kind and, with require_certified (--convex), the report to
@@ -67,7 +69,8 @@ struct BatchOptions {
 using BatchProgressCallback = std::function<void(const BatchOutcome&)>;
 
 // Fits every input; never throws for a bad input (it becomes a failed or error row).
-std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
+                                   const BatchOptions& options,
                                    const BatchProgressCallback& on_done);
 
 // One input: the resume check (when options.resume), the fit and its outputs.

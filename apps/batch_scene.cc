@@ -21,11 +21,13 @@ std::string OutPath(const BatchOptions& o, const BatchInput& in, const char* suf
 bool ReadCompleteScene(const BatchInput& in, const BatchOptions& o, BatchOutcome* out) {
   try {
     const Scene scene = ReadSceneFile(OutPath(o, in, ".scene.json"));
-    ReadLabelsFile(OutPath(o, in, ".labels.txt"), static_cast<int>(scene.primitives.size()), scene.points);
+    ReadLabelsFile(OutPath(o, in, ".labels.txt"), static_cast<int>(scene.primitives.size()),
+                   scene.points);
     std::ifstream report_file(OutPath(o, in, ".report.json"));
     if (!report_file) return false;
     const nlohmann::json report = nlohmann::json::parse(report_file);
-    if (report.value("primitives", 0) != static_cast<int>(scene.primitives.size()) || scene.primitives.empty())
+    if (report.value("primitives", 0) != static_cast<int>(scene.primitives.size()) ||
+        scene.primitives.empty())
       return false;
     out->points = static_cast<size_t>(scene.points);
     out->inliers = static_cast<size_t>(scene.points - scene.unassigned);
@@ -51,7 +53,8 @@ BatchOutcome ProcessSceneInput(const BatchInput& in, const BatchOptions& o) {
     return out;
   }
   const auto start = std::chrono::steady_clock::now();
-  const std::string scene_path = OutPath(o, in, ".scene.json"), labels_path = OutPath(o, in, ".labels.txt"),
+  const std::string scene_path = OutPath(o, in, ".scene.json"),
+                    labels_path = OutPath(o, in, ".labels.txt"),
                     report_path = OutPath(o, in, ".report.json");
   std::error_code ignored;
   try {

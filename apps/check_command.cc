@@ -27,7 +27,7 @@ namespace {
 struct CheckOptions {
   std::vector<std::string> files;
   bool json = false;
-  int sample = 0;  // segments per patch for the tangent-plane test; 0: off
+  int sample = 0;             // segments per patch for the tangent-plane test; 0: off
   bool patches_only = false;  // old verdict: a file without patches counts as convex (vacuous)
 };
 
@@ -77,9 +77,12 @@ int Run(const CheckOptions& options) {
                     << ": certified convex but sampling found " << r.sample.violations
                     << " tangent-plane violations (a bug: please report)\n";
         } else if (!r.certificate.convex) {
-          if (r.sample.violations > 0) ++summary.confirmed;
-          else if (r.sample.zero_points >= 2) ++summary.conservative;
-          else ++summary.undecided;
+          if (r.sample.violations > 0)
+            ++summary.confirmed;
+          else if (r.sample.zero_points >= 2)
+            ++summary.conservative;
+          else
+            ++summary.undecided;
         }
       }
       reports[f].push_back(r);
@@ -135,7 +138,8 @@ int Run(const CheckOptions& options) {
         convex &= m.certificate.convex_on_box;
         mesh_list.push_back(MeshCheckJson(m));
       }
-      if (reports[f].empty() && meshes[f].empty() && !options.patches_only) convex = tree_certified[f];
+      if (reports[f].empty() && meshes[f].empty() && !options.patches_only)
+        convex = tree_certified[f];
       file["convex"] = convex;
       file["patches"] = patches;
       file["tree"] = tree_verdicts[f];
@@ -158,7 +162,8 @@ int Run(const CheckOptions& options) {
       for (const PatchReport& r : reports[f]) {
         std::printf("%-24s %-28s %6d %6s %15.6g", options.files[f].c_str(), r.label.c_str(),
                     r.degree, r.certificate.convex ? "yes" : "no", r.certificate.min_eigenvalue);
-        if (options.sample > 0) std::printf(" %11d %10d", r.sample.zero_points, r.sample.violations);
+        if (options.sample > 0)
+          std::printf(" %11d %10d", r.sample.zero_points, r.sample.violations);
         std::printf("\n");
       }
     for (size_t f = 0; f < models.size(); ++f) {
@@ -171,8 +176,8 @@ int Run(const CheckOptions& options) {
     for (const auto& file_reports : reports)
       for (const PatchReport& r : file_reports) patches_convex &= r.certificate.convex;
     std::printf("%s\n", all_convex       ? "all patches certified convex"
-                       : patches_convex ? "some model trees are not certified convex"
-                                        : "some patches are not certified convex");
+                        : patches_convex ? "some model trees are not certified convex"
+                                         : "some patches are not certified convex");
     if (options.sample > 0)
       std::printf(
           "sampling (%d segments per patch): %d contradictions, %d not certified but no violation "

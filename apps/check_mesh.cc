@@ -61,11 +61,14 @@ nlohmann::ordered_json MeshCheckJson(const MeshCheck& c) {
 
 void PrintMeshCheck(const std::string& file, const MeshCheck& c) {
   const MeshConvexityCertificate& m = c.certificate;
-  std::printf("%-24s %-28s mesh degree %d C%d: %lld/%lld tetrahedra certified (min eigenvalue %.6g), "
-              "C1 defect %.3g: %s",
-              file.c_str(), c.label.c_str(), c.degree, c.continuity, m.certified_tetrahedra, m.tetrahedra,
-              m.min_eigenvalue, m.c1_defect, c.Verdict().c_str());
-  if (c.sampled) std::printf("  sampling: %d zero points, %d violations", c.sample.zero_points, c.sample.violations);
+  std::printf(
+      "%-24s %-28s mesh degree %d C%d: %lld/%lld tetrahedra certified (min eigenvalue %.6g), "
+      "C1 defect %.3g: %s",
+      file.c_str(), c.label.c_str(), c.degree, c.continuity, m.certified_tetrahedra, m.tetrahedra,
+      m.min_eigenvalue, m.c1_defect, c.Verdict().c_str());
+  if (c.sampled)
+    std::printf("  sampling: %d zero points, %d violations", c.sample.zero_points,
+                c.sample.violations);
   std::printf("\n");
 }
 

@@ -24,21 +24,27 @@ struct DetectArgs {
 }  // namespace
 
 CommandAction AddDetectCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("detect", "Find every primitive of a multi-primitive cloud, with its points");
+  auto* cmd = app.add_subcommand(
+      "detect", "Find every primitive of a multi-primitive cloud, with its points");
   auto a = std::make_shared<DetectArgs>();
-  cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt/.xyzl, .ply, .pcd); normals estimated when absent")
+  cmd->add_option("CLOUD", a->cloud,
+                  "Point cloud (.xyz/.pwn/.txt/.xyzl, .ply, .pcd); normals estimated when absent")
       ->required();
   cmd->add_option("--out", a->out, "Output scene file (JSON, DESIGN.md scene format)")->required();
-  cmd->add_option("--labels", a->labels, "Per-point labels: primitive index, -1 unassigned, one a line");
+  cmd->add_option("--labels", a->labels,
+                  "Per-point labels: primitive index, -1 unassigned, one a line");
   cmd->add_option("--ply", a->ply, "Segmented cloud (PLY with normals, label and residual)");
-  cmd->add_option("--report", a->report, "JSON report (scales estimated from the cloud, counts, time)");
+  cmd->add_option("--report", a->report,
+                  "JSON report (scales estimated from the cloud, counts, time)");
   cmd->add_option("--kinds", a->kinds, "Kinds to detect, comma separated (default: all five)");
-  cmd->add_option("--threshold", a->threshold, "Distance band (default: from the cloud's noise and spacing)")
+  cmd->add_option("--threshold", a->threshold,
+                  "Distance band (default: from the cloud's noise and spacing)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--min-points", a->min_points, "Smallest primitive (default: max(10, N/500))")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", a->seed, "Random seed (the result depends on it only, not on threads)");
-  cmd->add_option("--threads", a->threads, "Threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", a->threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
   return [a]() {
     DetectionOptions options;
     options.kinds = DetectionKindsFromList(a->kinds);
@@ -55,10 +61,12 @@ CommandAction AddDetectCommand(CLI::App& app) {
     }
     WriteDetection(d, a->out, a->labels, a->ply);
     for (const ScenePrimitive& p : d.scene.primitives)
-      std::printf("%s %s points %d rms %.6g normals %s\n", p.name.c_str(), NodeTypeName(p.model.nodes()[0].type),
-                  p.points, p.rms_distance, p.normal_side.c_str());
-    std::printf("points %d  primitives %zu  unassigned %d  threshold %.6g  %.3f s\n", d.scene.points,
-                d.scene.primitives.size(), d.scene.unassigned, d.result.threshold, d.result.seconds);
+      std::printf("%s %s points %d rms %.6g normals %s\n", p.name.c_str(),
+                  NodeTypeName(p.model.nodes()[0].type), p.points, p.rms_distance,
+                  p.normal_side.c_str());
+    std::printf("points %d  primitives %zu  unassigned %d  threshold %.6g  %.3f s\n",
+                d.scene.points, d.scene.primitives.size(), d.scene.unassigned, d.result.threshold,
+                d.result.seconds);
     return 0;
   };
 }

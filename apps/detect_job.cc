@@ -18,7 +18,8 @@ std::vector<NodeType> DetectionKindsFromList(const std::string& list) {
   while (std::getline(in, name, ',')) {
     NodeType kind;
     if (!FittableKindFromName(name, &kind))
-      throw InputError("--kinds: '" + name + "' is not one of plane, sphere, cylinder, cone, torus");
+      throw InputError("--kinds: '" + name +
+                       "' is not one of plane, sphere, cylinder, cone, torus");
     if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
   }
   if (kinds.empty()) throw InputError("--kinds: no kind given");
@@ -81,8 +82,8 @@ CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& 
   return d;
 }
 
-void WriteDetection(const CloudDetection& d, const std::string& scene_path, const std::string& labels_path,
-                    const std::string& ply_path) {
+void WriteDetection(const CloudDetection& d, const std::string& scene_path,
+                    const std::string& labels_path, const std::string& ply_path) {
   WriteSceneFile(d.scene, scene_path);
   if (!labels_path.empty()) WriteLabelsFile(d.result.labels, labels_path);
   if (!ply_path.empty()) {

@@ -18,11 +18,11 @@
 namespace implicitfit {
 
 struct CloudDetection {
-  PointCloud cloud;          // as read, with the normals the detection used
+  PointCloud cloud;  // as read, with the normals the detection used
   DetectionResult result;
   Scene scene;
   nlohmann::json report;
-  bool degenerate = false;   // too few points for normals: nothing could be detected
+  bool degenerate = false;  // too few points for normals: nothing could be detected
 };
 
 // Throws InputError (naming the file) when the cloud cannot be read.

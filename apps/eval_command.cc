@@ -13,7 +13,9 @@ CommandAction AddEvalCommand(CLI::App& app) {
   auto model_path = std::make_shared<std::string>();
   auto points_path = std::make_shared<std::string>();
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
-  cmd->add_option("POINTS", *points_path, "Points (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals ignored)")->required();
+  cmd->add_option("POINTS", *points_path,
+                  "Points (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals ignored)")
+      ->required();
   return [model_path, points_path]() {
     const Model model = ReadModelFile(*model_path);
     const PointCloud cloud = ReadCloudFile(*points_path);

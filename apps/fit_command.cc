@@ -40,31 +40,46 @@ struct FitArgs {
 CommandAction AddFitCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to an oriented point cloud");
   auto a = std::make_shared<FitArgs>();
-  cmd->add_option("CLOUD", a->cloud, "Point cloud (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals estimated when absent)")->required();
-  auto* model_opt = cmd->add_option("--model", a->kind, "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, box, paraboloid, capsule, patch-mesh");
-  auto* init_opt = cmd->add_option("--init", a->init, "Fit every free parameter of this model tree (primitive parameters, delta and epsilon, control points)");
+  cmd->add_option("CLOUD", a->cloud,
+                  "Point cloud (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals estimated when absent)")
+      ->required();
+  auto* model_opt =
+      cmd->add_option("--model", a->kind,
+                      "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, "
+                      "cubic-patch, box, paraboloid, capsule, patch-mesh");
+  auto* init_opt = cmd->add_option("--init", a->init,
+                                   "Fit every free parameter of this model tree (primitive "
+                                   "parameters, delta and epsilon, control points)");
   model_opt->excludes(init_opt);
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
   cmd->add_option("--report", a->report, "Write a JSON report of the fit");
   cmd->add_option("--seed", a->seed, "Random seed (the fit is deterministic for a seed)");
-  cmd->add_option("--threshold", a->threshold, "Initial inlier band (default: 1% of the bounding-box diagonal)")
+  cmd->add_option("--threshold", a->threshold,
+                  "Initial inlier band (default: 1% of the bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--fix", a->fixes, "Keep a parameter constant, e.g. --fix radius=2 --fix axis=0,0,1");
+  cmd->add_option("--fix", a->fixes,
+                  "Keep a parameter constant, e.g. --fix radius=2 --fix axis=0,0,1");
   cmd->add_option("--estimator", a->estimator,
-                  "robust (default: trimmed maximum likelihood), least-squares (orthogonal distances of every point, "
+                  "robust (default: trimmed maximum likelihood), least-squares (orthogonal "
+                  "distances of every point, "
                   "ISO 10360-6) or minimum-zone (smallest max |distance|, ISO 1101)");
   cmd->add_flag("--convex", a->convex, "Constrain the Bernstein patch to be convex (certified)")
       ->group("Bernstein patches");
-  cmd->add_option("--degree", a->degree, "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch; patch-mesh 2..5, default 3)")
+  cmd->add_option("--degree", a->degree,
+                  "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch; patch-mesh "
+                  "2..5, default 3)")
       ->check(CLI::Range(2, 5))
       ->group("Bernstein patches");
-  cmd->add_option("--tetrahedron", a->tetrahedron, "Patch tetrahedron x1,y1,z1,...,x4,y4,z4 (default: encloses the cloud)")
+  cmd->add_option("--tetrahedron", a->tetrahedron,
+                  "Patch tetrahedron x1,y1,z1,...,x4,y4,z4 (default: encloses the cloud)")
       ->delimiter(',')
       ->expected(12)
       ->group("Bernstein patches");
-  auto* cells_opt = cmd->add_option("--cells", a->cells, "patch-mesh: cubes along the longest edge of the cloud's box (default 4)")
-                        ->check(CLI::Range(1, 200))
-                        ->group("Bernstein patches");
+  auto* cells_opt =
+      cmd->add_option("--cells", a->cells,
+                      "patch-mesh: cubes along the longest edge of the cloud's box (default 4)")
+          ->check(CLI::Range(1, 200))
+          ->group("Bernstein patches");
   cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length (instead of --cells)")
       ->check(CLI::PositiveNumber)
       ->excludes(cells_opt)
@@ -83,7 +98,8 @@ CommandAction AddFitCommand(CLI::App& app) {
                   "I,J: the edge between vertices I and J lies on the patch")
       ->group("Bernstein patches");
   return [a]() {
-    ModelFitRequest request{a->cloud, a->out, a->report, a->init, a->kind, a->degree, a->convex, a->tetrahedron};
+    ModelFitRequest request{a->cloud, a->out,    a->report, a->init,
+                            a->kind,  a->degree, a->convex, a->tetrahedron};
     request.through_vertices = a->through_vertices;
     request.vertex_normals = a->vertex_normals;
     request.through_edges = a->through_edges;
@@ -91,8 +107,9 @@ CommandAction AddFitCommand(CLI::App& app) {
     request.cell = a->cell;
     request.continuity = a->continuity;
     if (request.HasShapeConstraints() && !IsPatchKind(a->kind))
-      throw InputError("--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
-                       "and cubic-patch");
+      throw InputError(
+          "--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
+          "and cubic-patch");
     if (IsMeshKind(a->kind)) return RunMeshFit(request);
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);
@@ -112,11 +129,13 @@ CommandAction AddFitCommand(CLI::App& app) {
     const Model model = result.ToModel(options.kind);
     WriteModelFile(model, a->out);
     std::printf("%s\n", ModelToJson(model)["root"].dump().c_str());
-    std::printf("points %zu  inliers %zu  rms %.6g  max %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
-                fit.points, result.inliers.size(), result.rms, result.max_abs, result.sigma,
-                result.mean_normal_angle_deg, result.seconds);
-    std::printf("estimator %s  form error %.6g (min %.6g, max %.6g)", EstimatorName(result.estimator),
-                result.form.form_error, result.form.min_distance, result.form.max_distance);
+    std::printf(
+        "points %zu  inliers %zu  rms %.6g  max %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
+        fit.points, result.inliers.size(), result.rms, result.max_abs, result.sigma,
+        result.mean_normal_angle_deg, result.seconds);
+    std::printf("estimator %s  form error %.6g (min %.6g, max %.6g)",
+                EstimatorName(result.estimator), result.form.form_error, result.form.min_distance,
+                result.form.max_distance);
     if (result.estimator == Estimator::kMinimumZone)
       std::printf("  zone width %.6g, contacts %d outer / %d inner", result.zone.zone_width,
                   result.zone.outer_contacts, result.zone.inner_contacts);

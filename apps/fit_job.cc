@@ -2,8 +2,8 @@
 
 #include <sstream>
 
-#include "datasets/normal_trust.h"
 #include "datasets/io_error.h"
+#include "datasets/normal_trust.h"
 #include "fit/fit_report.h"
 
 namespace implicitfit {
@@ -12,7 +12,8 @@ namespace {
 // "radius=2" or "axis=0,0,1" -> {"radius", {2}}.
 std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& text) {
   const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw InputError("--fix " + text + ": expected FIELD=VALUE[,VALUE...]");
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--fix " + text + ": expected FIELD=VALUE[,VALUE...]");
   std::vector<double> values;
   std::stringstream s(text.substr(eq + 1));
   std::string item;
@@ -40,7 +41,8 @@ CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& option
   return fit;
 }
 
-PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed, double threshold,
+PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed,
+                                            double threshold,
                                             const std::vector<std::string>& fixes) {
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))

@@ -20,9 +20,9 @@
 namespace implicitfit {
 
 struct CloudFit {
-  size_t points = 0;            // points read from the file
-  PrimitiveFitResult result;    // result.success false: a negative result (no model)
-  nlohmann::json report;        // the report of the fit, success or not
+  size_t points = 0;          // points read from the file
+  PrimitiveFitResult result;  // result.success false: a negative result (no model)
+  nlohmann::json report;      // the report of the fit, success or not
 };
 
 // Throws InputError (naming the file) when the cloud cannot be read.
@@ -30,7 +30,8 @@ CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& option
 
 // The fit options of the command-line arguments --model KIND, --seed, --threshold (<= 0: the
 // default) and --fix FIELD=V[,V...] (e.g. "radius=2", "axis=0,0,1"); InputError when invalid.
-PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed, double threshold,
+PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed,
+                                            double threshold,
                                             const std::vector<std::string>& fixes);
 
 // --estimator robust|least-squares|minimum-zone into options; InputError for another name.

@@ -24,7 +24,8 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
   options.cell = request.cell;
   options.continuity = request.continuity;
   options.convex = request.convex;
-  if (!request.tetrahedron.empty()) throw InputError("--tetrahedron applies to quadric-patch and cubic-patch");
+  if (!request.tetrahedron.empty())
+    throw InputError("--tetrahedron applies to quadric-patch and cubic-patch");
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   std::string normals;
@@ -32,27 +33,28 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
   const MeshFitResult r = FitBernsteinMesh(cloud.points, cloud.normals, options);
   const BernsteinGrid& g = r.grid;
   const nlohmann::json report = {{"success", r.success},
-                {"message", r.message},
-                {"points", cloud.size()},
-                {"inliers", cloud.size()},
-                {"degree", options.degree},
-                {"continuity", options.continuity},
-                {"grid", {{"origin", {g.origin[0], g.origin[1], g.origin[2]}},
-                          {"cell", g.cell},
-                          {"cells", {g.cells[0], g.cells[1], g.cells[2]}}}},
-                {"patches", r.tetrahedra},
-                {"rms_distance", r.rms},
-                {"initial_rms_distance", r.initial_rms},
-                {"mean_normal_angle_deg", r.mean_normal_angle_deg},
-                {"continuity_defect", r.continuity_defect},
-                {"convex_constraint", options.convex},
-                {"certified_tetrahedra", r.certified_tetrahedra},
-                {"certified_convex", r.certified_convex},
-                {"min_eigenvalue", r.min_eigenvalue},
-                {"iterations", r.iterations},
-                {"kept_initialisation", r.kept_initialisation},
-                {"seconds", r.seconds},
-                {"normals", normals}};
+                                 {"message", r.message},
+                                 {"points", cloud.size()},
+                                 {"inliers", cloud.size()},
+                                 {"degree", options.degree},
+                                 {"continuity", options.continuity},
+                                 {"grid",
+                                  {{"origin", {g.origin[0], g.origin[1], g.origin[2]}},
+                                   {"cell", g.cell},
+                                   {"cells", {g.cells[0], g.cells[1], g.cells[2]}}}},
+                                 {"patches", r.tetrahedra},
+                                 {"rms_distance", r.rms},
+                                 {"initial_rms_distance", r.initial_rms},
+                                 {"mean_normal_angle_deg", r.mean_normal_angle_deg},
+                                 {"continuity_defect", r.continuity_defect},
+                                 {"convex_constraint", options.convex},
+                                 {"certified_tetrahedra", r.certified_tetrahedra},
+                                 {"certified_convex", r.certified_convex},
+                                 {"min_eigenvalue", r.min_eigenvalue},
+                                 {"iterations", r.iterations},
+                                 {"kept_initialisation", r.kept_initialisation},
+                                 {"seconds", r.seconds},
+                                 {"normals", normals}};
   return MakeModelKindFit(r, report, cloud.size());
 }
 
@@ -61,19 +63,22 @@ int RunMeshFit(const ModelFitRequest& request) {
   const nlohmann::json& rep = fit.report;
   if (!request.report.empty()) WriteFileAtomically(request.report, rep.dump(2) + "\n");
   if (!fit.success) {
-    std::cerr << "implicitfit fit: " << request.cloud << ": patch-mesh fit failed: " << fit.message << "\n";
+    std::cerr << "implicitfit fit: " << request.cloud << ": patch-mesh fit failed: " << fit.message
+              << "\n";
     return 1;
   }
   WriteModelFile(fit.model, request.out);
   const auto& cells = rep["grid"]["cells"];
-  std::printf("points %zu  patches %lld (%dx%dx%d cubes, degree %d, C%d)  rms %.6g  normal angle %.3g deg  "
-              "continuity defect %.3g  certified convex on the box %s (%lld tetrahedra certified, min eigenvalue "
-              "%.3g)  %.3f s\n",
-              fit.points, rep["patches"].get<long long>(), cells[0].get<int>(), cells[1].get<int>(),
-              cells[2].get<int>(), rep["degree"].get<int>(), rep["continuity"].get<int>(), fit.rms,
-              rep["mean_normal_angle_deg"].get<double>(), rep["continuity_defect"].get<double>(),
-              fit.certified_convex ? "yes" : "no", rep["certified_tetrahedra"].get<long long>(),
-              rep["min_eigenvalue"].get<double>(), rep["seconds"].get<double>());
+  std::printf(
+      "points %zu  patches %lld (%dx%dx%d cubes, degree %d, C%d)  rms %.6g  normal angle %.3g deg  "
+      "continuity defect %.3g  certified convex on the box %s (%lld tetrahedra certified, min "
+      "eigenvalue "
+      "%.3g)  %.3f s\n",
+      fit.points, rep["patches"].get<long long>(), cells[0].get<int>(), cells[1].get<int>(),
+      cells[2].get<int>(), rep["degree"].get<int>(), rep["continuity"].get<int>(), fit.rms,
+      rep["mean_normal_angle_deg"].get<double>(), rep["continuity_defect"].get<double>(),
+      fit.certified_convex ? "yes" : "no", rep["certified_tetrahedra"].get<long long>(),
+      rep["min_eigenvalue"].get<double>(), rep["seconds"].get<double>());
   return 0;
 }
 

@@ -33,7 +33,8 @@ PatchShapeConstraints ShapeConstraintsFromArguments(const ModelFitRequest& reque
     size_t start = 0;
     while (start <= text.size()) {
       const size_t comma = text.find(',', start);
-      const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      const std::string item =
+          text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       try {
         size_t used = 0;
         out.push_back(std::stod(item, &used));
@@ -53,20 +54,24 @@ PatchShapeConstraints ShapeConstraintsFromArguments(const ModelFitRequest& reque
   };
   for (const std::string& text : request.vertex_normals) {
     const size_t eq = text.find('=');
-    if (eq == std::string::npos) throw InputError("--vertex-normal '" + text + "': expected I=nx,ny,nz");
+    if (eq == std::string::npos)
+      throw InputError("--vertex-normal '" + text + "': expected I=nx,ny,nz");
     const std::vector<double> i = numbers(text.substr(0, eq), "--vertex-normal");
     const std::vector<double> n = numbers(text.substr(eq + 1), "--vertex-normal");
-    if (i.size() != 1 || n.size() != 3) throw InputError("--vertex-normal '" + text + "': expected I=nx,ny,nz");
+    if (i.size() != 1 || n.size() != 3)
+      throw InputError("--vertex-normal '" + text + "': expected I=nx,ny,nz");
     PatchShapeConstraints::VertexNormal vn;
     vn.vertex = vertex(i[0], "--vertex-normal", text);
     vn.normal = Eigen::Vector3d(n[0], n[1], n[2]);
-    if (!(vn.normal.norm() > 0.0)) throw InputError("--vertex-normal '" + text + "': the normal must be non-zero");
+    if (!(vn.normal.norm() > 0.0))
+      throw InputError("--vertex-normal '" + text + "': the normal must be non-zero");
     c.vertex_normals.push_back(vn);
   }
   for (const std::string& text : request.through_edges) {
     const std::vector<double> e = numbers(text, "--through-edge");
     if (e.size() != 2) throw InputError("--through-edge '" + text + "': expected I,J");
-    c.through_edges.push_back({vertex(e[0], "--through-edge", text), vertex(e[1], "--through-edge", text)});
+    c.through_edges.push_back(
+        {vertex(e[0], "--through-edge", text), vertex(e[1], "--through-edge", text)});
     if (c.through_edges.back()[0] == c.through_edges.back()[1])
       throw InputError("--through-edge '" + text + "': two different vertices needed");
   }
@@ -75,7 +80,9 @@ PatchShapeConstraints ShapeConstraintsFromArguments(const ModelFitRequest& reque
 
 }  // namespace
 
-bool IsPatchKind(const std::string& kind) { return kind == "quadric-patch" || kind == "cubic-patch"; }
+bool IsPatchKind(const std::string& kind) {
+  return kind == "quadric-patch" || kind == "cubic-patch";
+}
 
 int RunTreeFit(const ModelFitRequest& request) {
   const Model init = ReadModelFile(request.init);
@@ -85,12 +92,13 @@ int RunTreeFit(const ModelFitRequest& request) {
   const nlohmann::json report = TreeFitReport(r, cloud.size(), normals);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
-    std::cerr << "implicitfit fit: " << request.cloud << ": model tree fit failed: " << r.message << "\n";
+    std::cerr << "implicitfit fit: " << request.cloud << ": model tree fit failed: " << r.message
+              << "\n";
     return 1;
   }
   Finish(request, r.model, report);
-  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n", cloud.size(), r.inliers,
-              r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
+  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
+              cloud.size(), r.inliers, r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
   return 0;
 }
 
@@ -105,14 +113,18 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
     report["success"] = false;
     report["message"] = start.message;
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
-    std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind << " fit failed: " << start.message
-              << "\n";
+    std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind
+              << " fit failed: " << start.message << "\n";
     return 1;
   }
   const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, TreeFitOptions{});
-  report.update({{"success", r.success}, {"message", r.message}, {"inliers", r.inliers},
-                 {"rms_distance", r.rms}, {"sigma", r.sigma},
-                 {"mean_normal_angle_deg", r.mean_normal_angle_deg}, {"iterations", r.iterations},
+  report.update({{"success", r.success},
+                 {"message", r.message},
+                 {"inliers", r.inliers},
+                 {"rms_distance", r.rms},
+                 {"sigma", r.sigma},
+                 {"mean_normal_angle_deg", r.mean_normal_angle_deg},
+                 {"iterations", r.iterations},
                  {"seconds", r.seconds}});
   const std::vector<std::string> names = r.model.ParameterNames();
   for (size_t i = 0; i < names.size(); ++i) {
@@ -121,12 +133,13 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
   }
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
-    std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind << " fit failed: " << r.message << "\n";
+    std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind
+              << " fit failed: " << r.message << "\n";
     return 1;
   }
   Finish(request, r.model, report);
-  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n", cloud.size(),
-              r.inliers, r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
+  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
+              cloud.size(), r.inliers, r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
   return 0;
 }
 
@@ -135,7 +148,8 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request) {
   options.degree = request.degree > 0 ? request.degree : (request.kind == "cubic-patch" ? 3 : 2);
   options.convex = request.convex;
   if (!request.tetrahedron.empty()) {
-    if (request.tetrahedron.size() != 12) throw InputError("--tetrahedron takes 12 numbers (4 vertices x y z)");
+    if (request.tetrahedron.size() != 12)
+      throw InputError("--tetrahedron takes 12 numbers (4 vertices x y z)");
     try {
       options.tetrahedron = Tetrahedron::FromArray(request.tetrahedron.data());
     } catch (const std::invalid_argument& e) {
@@ -157,14 +171,17 @@ int RunPatchFit(const ModelFitRequest& request) {
   const nlohmann::json& report = fit.report;
   if (!fit.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
-    std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << fit.message << "\n";
+    std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << fit.message
+              << "\n";
     return 1;
   }
   Finish(request, fit.model, report);
-  std::printf("points %zu  rms %.6g  normal angle %.3g deg  certified convex %s (min eigenvalue %.3g)", fit.points,
-              fit.rms, report["mean_normal_angle_deg"].get<double>(), fit.certified_convex ? "yes" : "no",
-              report["min_eigenvalue"].get<double>());
-  if (request.convex) std::printf("  unconstrained rms %.6g", report["unconstrained_rms_distance"].get<double>());
+  std::printf(
+      "points %zu  rms %.6g  normal angle %.3g deg  certified convex %s (min eigenvalue %.3g)",
+      fit.points, fit.rms, report["mean_normal_angle_deg"].get<double>(),
+      fit.certified_convex ? "yes" : "no", report["min_eigenvalue"].get<double>());
+  if (request.convex)
+    std::printf("  unconstrained rms %.6g", report["unconstrained_rms_distance"].get<double>());
   std::printf("  %.3f s\n", report["seconds"].get<double>());
   return 0;
 }

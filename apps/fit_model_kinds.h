@@ -18,20 +18,20 @@ namespace implicitfit {
 
 struct ModelFitRequest {
   std::string cloud, out, report;
-  std::string init;                   // --init
-  std::string kind;                   // quadric-patch / cubic-patch
-  int degree = 0;                     // 0: from the kind
+  std::string init;  // --init
+  std::string kind;  // quadric-patch / cubic-patch
+  int degree = 0;    // 0: from the kind
   bool convex = false;
-  std::vector<double> tetrahedron;    // empty or 12 numbers
+  std::vector<double> tetrahedron;  // empty or 12 numbers
   // Guo §3 shape control (patch kinds): vertices 1..4; "I=nx,ny,nz"; "I,J".
   std::vector<int> through_vertices;
   std::vector<std::string> vertex_normals, through_edges;
   bool HasShapeConstraints() const {
     return !through_vertices.empty() || !vertex_normals.empty() || !through_edges.empty();
   }
-  int cells = 0;                      // patch-mesh: --cells (0: default)
-  double cell = 0.0;                  // patch-mesh: --cell (0: from cells)
-  int continuity = 1;                 // patch-mesh: --continuity
+  int cells = 0;       // patch-mesh: --cells (0: default)
+  double cell = 0.0;   // patch-mesh: --cell (0: from cells)
+  int continuity = 1;  // patch-mesh: --continuity
 };
 
 // The fit of one cloud for the Bernstein kinds, shared by `fit` and `batch`: the report that

@@ -1,7 +1,8 @@
 // The `implicitfit` command line (DESIGN.md contract). Thin: it wires CLI11 to the commands and
 // maps errors to exit codes (2 for invalid usage or input, with the message on stderr).
-#include <CLI/CLI.hpp>
 #include <glog/logging.h>
+
+#include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 #include <map>

@@ -11,16 +11,20 @@
 namespace implicitfit {
 
 CommandAction AddMeshCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("mesh", "Triangle mesh of a model's zero set (binary PLY, normals from grad f)");
+  auto* cmd = app.add_subcommand(
+      "mesh", "Triangle mesh of a model's zero set (binary PLY, normals from grad f)");
   auto model_path = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto box = std::make_shared<std::vector<double>>();
   auto cell = std::make_shared<double>(0.0);
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
   cmd->add_option("--out", *out, "Output mesh (.ply)")->required();
-  cmd->add_option("--box", *box, "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, enlarged)")
-      ->delimiter(',')->expected(6);
-  cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100)")->check(CLI::PositiveNumber);
+  cmd->add_option("--box", *box,
+                  "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, enlarged)")
+      ->delimiter(',')
+      ->expected(6);
+  cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100)")
+      ->check(CLI::PositiveNumber);
   return [model_path, out, box, cell]() {
     if (out->size() < 4 || out->substr(out->size() - 4) != ".ply")
       throw InputError(*out + ": unsupported output format (use .ply)");
@@ -46,8 +50,9 @@ CommandAction AddMeshCommand(CLI::App& app) {
       return 1;
     }
     WriteMeshPlyFile(result.mesh, *out);
-    std::cout << "vertices " << result.mesh.vertices.size() << "\ntriangles " << result.mesh.triangles.size()
-              << "\ncell " << result.cell << "\nmax_abs_value " << result.max_abs_value << "\n";
+    std::cout << "vertices " << result.mesh.vertices.size() << "\ntriangles "
+              << result.mesh.triangles.size() << "\ncell " << result.cell << "\nmax_abs_value "
+              << result.max_abs_value << "\n";
     return 0;
   };
 }

@@ -3,9 +3,8 @@
 // A solid model of the scan (fit/solid_reconstruction.h) from the primitives of a scene file
 // (datasets/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
 // with its defaults and the same seed (DetectPrimitives below).
-#include <nlohmann/json.hpp>
-
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "apps/command.h"
 #include "apps/detect_job.h"
@@ -28,7 +27,8 @@ struct ReconstructArgs {
 
 std::vector<SolidPrimitive> PrimitivesOfScene(const Scene& scene) {
   std::vector<SolidPrimitive> primitives;
-  for (const ScenePrimitive& p : scene.primitives) primitives.push_back({p.name, p.model, p.rms_distance});
+  for (const ScenePrimitive& p : scene.primitives)
+    primitives.push_back({p.name, p.model, p.rms_distance});
   return primitives;
 }
 
@@ -43,8 +43,8 @@ std::vector<SolidPrimitive> DetectPrimitives(const ReconstructArgs& args, PointC
   return PrimitivesOfScene(detection.scene);
 }
 
-nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud, const std::string& normals,
-                      const std::vector<SolidPrimitive>& primitives) {
+nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
+                      const std::string& normals, const std::vector<SolidPrimitive>& primitives) {
   nlohmann::json j;
   j["success"] = r.success;
   j["message"] = r.message;
@@ -60,31 +60,35 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud, con
   j["seconds"] = r.seconds;
   j["primitives"] = nlohmann::json::array();
   for (size_t k = 0; k < primitives.size(); ++k)
-    j["primitives"].push_back({{"name", primitives[k].name}, {"side", r.sides[k]}, {"points", r.assigned[k]}});
+    j["primitives"].push_back(
+        {{"name", primitives[k].name}, {"side", r.sides[k]}, {"points", r.assigned[k]}});
   j["blends"] = nlohmann::json::array();
   for (const BlendEstimate& b : r.blends)
-    j["blends"].push_back({{"node", b.node},
-                           {"type", b.type},
-                           {"delta", b.delta},
-                           {"epsilon", b.epsilon},
-                           {"standard_deviations", {{"delta", b.sd_delta}, {"epsilon", b.sd_epsilon}}},
-                           {"crease_angle_deg", b.crease_angle_deg},
-                           {"fillet_radius", b.fillet_radius},
-                           {"fillet_radius_standard_deviation", b.sd_fillet_radius},
-                           {"transition_points", b.transition_points}});
+    j["blends"].push_back(
+        {{"node", b.node},
+         {"type", b.type},
+         {"delta", b.delta},
+         {"epsilon", b.epsilon},
+         {"standard_deviations", {{"delta", b.sd_delta}, {"epsilon", b.sd_epsilon}}},
+         {"crease_angle_deg", b.crease_angle_deg},
+         {"fillet_radius", b.fillet_radius},
+         {"fillet_radius_standard_deviation", b.sd_fillet_radius},
+         {"transition_points", b.transition_points}});
   return j;
 }
 
 }  // namespace
 
 CommandAction AddReconstructCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("reconstruct", "Solid model of a scan: oriented primitives, smooth CSG, fitted fillets");
+  auto* cmd = app.add_subcommand(
+      "reconstruct", "Solid model of a scan: oriented primitives, smooth CSG, fitted fillets");
   auto a = std::make_shared<ReconstructArgs>();
   cmd->add_option("CLOUD", a->cloud, "Oriented cloud (.xyz/.pwn/.txt/.ply/.pcd)")->required();
   cmd->add_option("--out", a->out, "Output model (JSON)")->required();
   cmd->add_option("--scene", a->scene, "Scene file of the cloud's primitives (from detect)");
   cmd->add_option("--mesh", a->mesh, "Also write a mesh of the solid (.ply)");
-  cmd->add_option("--report", a->report, "Report (JSON): RMS, normal agreement, blends with deviations");
+  cmd->add_option("--report", a->report,
+                  "Report (JSON): RMS, normal agreement, blends with deviations");
   cmd->add_option("--seed", a->seed, "Random seed");
   return [a]() {
     if (!a->mesh.empty() && (a->mesh.size() < 4 || a->mesh.substr(a->mesh.size() - 4) != ".ply"))
@@ -101,8 +105,8 @@ CommandAction AddReconstructCommand(CLI::App& app) {
     } else {
       const Scene scene = ReadSceneFile(a->scene);
       if (scene.points > 0 && static_cast<size_t>(scene.points) != cloud.size())
-        throw InputError(a->scene + ": scene is of a cloud of " + std::to_string(scene.points) + " points, " +
-                         a->cloud + " has " + std::to_string(cloud.size()));
+        throw InputError(a->scene + ": scene is of a cloud of " + std::to_string(scene.points) +
+                         " points, " + a->cloud + " has " + std::to_string(cloud.size()));
       if (scene.primitives.empty()) throw InputError(a->scene + ": no primitives");
       if (scene.primitives.size() > 64) throw InputError(a->scene + ": more than 64 primitives");
       primitives = PrimitivesOfScene(scene);
@@ -113,7 +117,8 @@ CommandAction AddReconstructCommand(CLI::App& app) {
     }
     SolidReconstructionOptions options;
     options.seed = a->seed;
-    const SolidReconstruction r = ReconstructSolid(cloud.points, cloud.normals, primitives, options);
+    const SolidReconstruction r =
+        ReconstructSolid(cloud.points, cloud.normals, primitives, options);
     const nlohmann::json report = Report(r, cloud, normals, primitives);
     if (!a->report.empty()) WriteFileAtomically(a->report, report.dump(2) + "\n");
     if (!r.success) {

@@ -19,16 +19,25 @@ CommandAction AddSampleCommand(CLI::App& app) {
   auto options = std::make_shared<SampleOptions>();
   auto view = std::make_shared<std::vector<double>>();
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
-  cmd->add_option("--count", options->count, "Number of points (inliers + outliers)")->required()->check(CLI::PositiveNumber);
-  cmd->add_option("--noise", options->noise, "Sigma of the Gaussian displacement along the normal")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--outliers", options->outlier_fraction, "Fraction of uniform outliers in the sampling box")
+  cmd->add_option("--count", options->count, "Number of points (inliers + outliers)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--noise", options->noise, "Sigma of the Gaussian displacement along the normal")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--outliers", options->outlier_fraction,
+                  "Fraction of uniform outliers in the sampling box")
       ->check(CLI::Range(0.0, 0.99));
   cmd->add_option("--seed", options->seed, "Random seed");
-  cmd->add_option("--view", *view, "Partial view: direction x,y,z the scanner sees the outward normals from")
-      ->delimiter(',')->expected(3);
-  cmd->add_option("--view-angle", options->view_angle_deg, "Partial view: keep normals within this angle of --view")
+  cmd->add_option("--view", *view,
+                  "Partial view: direction x,y,z the scanner sees the outward normals from")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--view-angle", options->view_angle_deg,
+                  "Partial view: keep normals within this angle of --view")
       ->check(CLI::Range(0.0, 180.0));
-  cmd->add_option("--out", *out, "Output cloud (.xyz/.pwn/.txt: x y z nx ny nz; .ply: binary with normals)")->required();
+  cmd->add_option("--out", *out,
+                  "Output cloud (.xyz/.pwn/.txt: x y z nx ny nz; .ply: binary with normals)")
+      ->required();
   return [model_path, out, options, view]() {
     const std::string ext = out->size() > 4 ? out->substr(out->find_last_of('.') + 1) : "";
     const bool ply = ext == "ply";

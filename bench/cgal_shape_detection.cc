@@ -14,14 +14,15 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // set_input), and the shapes' indices refer to the reordered range.
 using Pwn = std::tuple<Kernel::Point_3, Kernel::Vector_3, std::size_t>;
 using Pwns = std::vector<Pwn>;
-using Traits = CGAL::Shape_detection::Efficient_RANSAC_traits<Kernel, Pwns, CGAL::Nth_of_tuple_property_map<0, Pwn>,
-                                                             CGAL::Nth_of_tuple_property_map<1, Pwn>>;
+using Traits = CGAL::Shape_detection::Efficient_RANSAC_traits<
+    Kernel, Pwns, CGAL::Nth_of_tuple_property_map<0, Pwn>, CGAL::Nth_of_tuple_property_map<1, Pwn>>;
 using Ransac = CGAL::Shape_detection::Efficient_RANSAC<Traits>;
 
 }  // namespace
 
 CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
-                                  const std::vector<Eigen::Vector3d>& normals, const CgalParameters& p) {
+                                  const std::vector<Eigen::Vector3d>& normals,
+                                  const CgalParameters& p) {
   using implicitfit::NodeType;
   Pwns pwn;
   pwn.reserve(points.size());
@@ -44,7 +45,8 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
   CgalDetection d;
   const auto in_time = [&](double) {
     d.stopped = p.max_seconds > 0 &&
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > p.max_seconds;
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+                    p.max_seconds;
     return !d.stopped;
   };
   if (p.defaults) {
@@ -52,7 +54,8 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
   } else {
     Ransac::Parameters params;
     params.probability = p.probability;
-    params.min_points = std::max<std::size_t>(10, static_cast<std::size_t>(p.min_points_fraction * points.size()));
+    params.min_points =
+        std::max<std::size_t>(10, static_cast<std::size_t>(p.min_points_fraction * points.size()));
     params.epsilon = p.epsilon_fraction * diag;
     params.cluster_epsilon = p.cluster_epsilon_fraction * diag;
     params.normal_threshold = p.normal_threshold;
@@ -62,7 +65,8 @@ CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
   for (const auto& shape : ransac.shapes()) {
     NodeType kind = NodeType::kPlane;
     if (dynamic_cast<CGAL::Shape_detection::Sphere<Traits>*>(shape.get())) kind = NodeType::kSphere;
-    if (dynamic_cast<CGAL::Shape_detection::Cylinder<Traits>*>(shape.get())) kind = NodeType::kCylinder;
+    if (dynamic_cast<CGAL::Shape_detection::Cylinder<Traits>*>(shape.get()))
+      kind = NodeType::kCylinder;
     if (dynamic_cast<CGAL::Shape_detection::Cone<Traits>*>(shape.get())) kind = NodeType::kCone;
     if (dynamic_cast<CGAL::Shape_detection::Torus<Traits>*>(shape.get())) kind = NodeType::kTorus;
     const int id = static_cast<int>(d.kinds.size());

@@ -10,23 +10,24 @@
 namespace implicitfit_bench {
 
 struct CgalParameters {
-  bool defaults = true;          // CGAL's own defaults (every field below ignored)
+  bool defaults = true;  // CGAL's own defaults (every field below ignored)
   double probability = 0.01;
   double min_points_fraction = 0.01;  // min_points = this * N
   double epsilon_fraction = 0.01;     // epsilon = this * bbox diagonal
   double cluster_epsilon_fraction = 0.01;
   double normal_threshold = 0.9;
-  double max_seconds = 0.0;      // > 0: stop the detection after this long (CGAL's callback)
+  double max_seconds = 0.0;  // > 0: stop the detection after this long (CGAL's callback)
 };
 
 struct CgalDetection {
-  std::vector<int> labels;                    // per point, -1 unassigned
-  std::vector<implicitfit::NodeType> kinds;   // per shape
+  std::vector<int> labels;                   // per point, -1 unassigned
+  std::vector<implicitfit::NodeType> kinds;  // per shape
   double seconds = 0.0;
-  bool stopped = false;                       // hit max_seconds
+  bool stopped = false;  // hit max_seconds
 };
 
 CgalDetection CgalEfficientRansac(const std::vector<Eigen::Vector3d>& points,
-                                  const std::vector<Eigen::Vector3d>& normals, const CgalParameters& p);
+                                  const std::vector<Eigen::Vector3d>& normals,
+                                  const CgalParameters& p);
 
 }  // namespace implicitfit_bench

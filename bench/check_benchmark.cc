@@ -27,7 +27,8 @@ void BM_Certificate(benchmark::State& state) {
   int convex = 0;
   size_t i = 0;
   for (auto _ : state) {
-    const implicitfit::ConvexityCertificate c = implicitfit::CertifyConvexity(k, b.data() + i * stride);
+    const implicitfit::ConvexityCertificate c =
+        implicitfit::CertifyConvexity(k, b.data() + i * stride);
     convex += c.convex;
     benchmark::DoNotOptimize(c.min_eigenvalue);
     i = (i + 1) % count;

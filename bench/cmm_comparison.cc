@@ -6,7 +6,8 @@
 // points and coefficients, as a user would call it; cylinder and cone need normals, estimated by
 // pcl::NormalEstimation from the 8 nearest points). Prints a Markdown table: median time per
 // fit, the median and largest geometric difference to the reference (mm; angles times the
-// part size), failures (least squares, minimum zone not certified, PCL nothing found or > 1 mm off).
+// part size), failures (least squares, minimum zone not certified, PCL nothing found or > 1 mm
+// off).
 //
 // Usage: cmm_comparison [--sizes 6,10,20,40] [--seeds 20] [--kinds plane,sphere,cylinder,cone]
 #include <pcl/ModelCoefficients.h>
@@ -35,10 +36,14 @@ using testsupport::CmmSet;
 
 NodeType KindOf(CmmKind k) {
   switch (k) {
-    case CmmKind::kPlane: return NodeType::kPlane;
-    case CmmKind::kSphere: return NodeType::kSphere;
-    case CmmKind::kCylinder: return NodeType::kCylinder;
-    default: return NodeType::kCone;
+    case CmmKind::kPlane:
+      return NodeType::kPlane;
+    case CmmKind::kSphere:
+      return NodeType::kSphere;
+    case CmmKind::kCylinder:
+      return NodeType::kCylinder;
+    default:
+      return NodeType::kCone;
   }
 }
 
@@ -67,7 +72,8 @@ std::vector<double> RunPcl(const CmmSet& s) {
     pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
     pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
     ne.setInputCloud(xyz);
-    ne.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+    ne.setSearchMethod(
+        pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
     ne.setKSearch(std::min<int>(8, static_cast<int>(s.points.size()) - 1));
     ne.compute(*normals);
     pcl::SACSegmentationFromNormals<pcl::PointXYZ, pcl::Normal> seg;
@@ -101,7 +107,9 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-double Max(const std::vector<double>& v) { return v.empty() ? NAN : *std::max_element(v.begin(), v.end()); }
+double Max(const std::vector<double>& v) {
+  return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
+}
 
 std::vector<std::string> Split(const std::string& s) {
   std::vector<std::string> out;
@@ -114,22 +122,33 @@ std::vector<std::string> Split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> sizes = {"6", "10", "20", "40"}, kinds = {"plane", "sphere", "cylinder", "cone"};
+  std::vector<std::string> sizes = {"6", "10", "20", "40"},
+                           kinds = {"plane", "sphere", "cylinder", "cone"};
   int seeds = 20;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--sizes")) sizes = Split(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--kinds")) kinds = Split(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--sizes"))
+      sizes = Split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--kinds"))
+      kinds = Split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seeds"))
+      seeds = std::atoi(argv[i + 1]);
     else {
-      std::fprintf(stderr, "usage: %s [--sizes N,N] [--seeds S] [--kinds plane,sphere,cylinder,cone]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--sizes N,N] [--seeds S] [--kinds plane,sphere,cylinder,cone]\n",
+                   argv[0]);
       return 2;
     }
   }
-  std::printf("| kind | points | implicitfit LS ms | implicitfit MZ ms | PCL ms | implicitfit LS difference median / max (mm) "
-              "| PCL difference median / max (mm) | failures LS / MZ / PCL |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| kind | points | implicitfit LS ms | implicitfit MZ ms | PCL ms | implicitfit LS "
+      "difference median / max (mm) "
+      "| PCL difference median / max (mm) | failures LS / MZ / PCL "
+      "|\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string& name : kinds) {
-    const CmmKind kind = name == "plane" ? CmmKind::kPlane : name == "sphere" ? CmmKind::kSphere
-                         : name == "cylinder" ? CmmKind::kCylinder : CmmKind::kCone;
+    const CmmKind kind = name == "plane"      ? CmmKind::kPlane
+                         : name == "sphere"   ? CmmKind::kSphere
+                         : name == "cylinder" ? CmmKind::kCylinder
+                                              : CmmKind::kCone;
     const NodeType nk = KindOf(kind);
     for (const std::string& size : sizes) {
       const int n = std::max(std::atoi(size.c_str()), kind == CmmKind::kCone ? 7 : 6);
@@ -154,15 +173,20 @@ int main(int argc, char** argv) {
         const std::vector<double> pcl = RunPcl(s);
         t_pcl.push_back(1e3 * Seconds(start));
         if (!mz.success) ++fail_mz;
-        if (ls.success) d_ours.push_back(Largest(testsupport::ParameterDifferences(s, ls.parameters, ref)));
-        else ++fail_ours;
-        const double dp = pcl.empty() ? INFINITY : Largest(testsupport::ParameterDifferences(s, pcl, ref));
-        if (std::isfinite(dp) && dp < 1.0) d_pcl.push_back(dp);
-        else ++fail_pcl;  // nothing found, or more than 1 mm off
+        if (ls.success)
+          d_ours.push_back(Largest(testsupport::ParameterDifferences(s, ls.parameters, ref)));
+        else
+          ++fail_ours;
+        const double dp =
+            pcl.empty() ? INFINITY : Largest(testsupport::ParameterDifferences(s, pcl, ref));
+        if (std::isfinite(dp) && dp < 1.0)
+          d_pcl.push_back(dp);
+        else
+          ++fail_pcl;  // nothing found, or more than 1 mm off
       }
-      std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2g / %.2g | %.2g / %.2g | %d / %d / %d |\n", name.c_str(), n,
-                  Median(t_ls), Median(t_mz), Median(t_pcl), Median(d_ours), Max(d_ours), Median(d_pcl), Max(d_pcl),
-                  fail_ours, fail_mz, fail_pcl);
+      std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2g / %.2g | %.2g / %.2g | %d / %d / %d |\n",
+                  name.c_str(), n, Median(t_ls), Median(t_mz), Median(t_pcl), Median(d_ours),
+                  Max(d_ours), Median(d_pcl), Max(d_pcl), fail_ours, fail_mz, fail_pcl);
       std::fflush(stdout);
     }
   }

@@ -78,8 +78,8 @@ void BM_TreeCertificate(benchmark::State& state) {
   Model m;
   std::vector<int> children;
   for (int i = 0; i < 4; ++i)
-    children.push_back(m.AddPrimitive(NodeType::kPlane, {i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0,
-                                                         i >= 2 ? 1.0 : 0.0, 1.0}));
+    children.push_back(m.AddPrimitive(
+        NodeType::kPlane, {i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i >= 2 ? 1.0 : 0.0, 1.0}));
   children.push_back(m.AddPrimitive(NodeType::kSphere, {0, 0, 0, 1.2}));
   const int op = m.AddOperator(NodeType::kIntersection, children, 0.1, 0.1, 3);
   m.mutable_nodes()[op].smoothing = BlendSmoothing::kConvex;
@@ -120,7 +120,8 @@ int ConservativeShare() {
         "degree %d, %zu patches: plain certified %d, finsler certified %d; of the %d not plainly "
         "certified: %d confirmed non-convex, %d conservative, %d undecided.\n"
         "  conservative share before %.1f%% (%d/%d), after %.1f%% (%d/%d: finsler certifies %d); "
-        "locally_convex (a separate, weaker verdict) on %d of the conservative; contradictions %d\n",
+        "locally_convex (a separate, weaker verdict) on %d of the conservative; contradictions "
+        "%d\n",
         k, pool.size(), plain, finsler, static_cast<int>(pool.size()) - plain, confirmed,
         conservative, undecided, 100.0 * conservative / std::max(1, judged), conservative, judged,
         100.0 * (conservative - rescued) / std::max(1, judged), conservative - rescued, judged,

@@ -95,7 +95,8 @@ Row RunImplicitfit(const Case& c) {
   Row row;
   const auto start = std::chrono::steady_clock::now();
   const Neighbourhoods nb = FindNeighbourhoods(c.cloud.points);
-  const DetectionResult r = DetectPrimitives(c.cloud.points, c.cloud.normals, nb.indices, nb.spacing);
+  const DetectionResult r =
+      DetectPrimitives(c.cloud.points, c.cloud.normals, nb.indices, nb.spacing);
   row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<NodeType> kinds;
   for (const auto& p : r.primitives) kinds.push_back(p.kind);
@@ -116,7 +117,8 @@ Row RunImplicitfit(const Case& c) {
 
 Row RunCgal(const Case& c, const implicitfit_bench::CgalParameters& p) {
   Row row;
-  const implicitfit_bench::CgalDetection d = implicitfit_bench::CgalEfficientRansac(c.cloud.points, c.cloud.normals, p);
+  const implicitfit_bench::CgalDetection d =
+      implicitfit_bench::CgalEfficientRansac(c.cloud.points, c.cloud.normals, p);
   row.seconds = d.seconds;
   row.m = CompareSegmentations(c.labels, c.kinds, d.labels, d.kinds);
   return row;
@@ -125,9 +127,9 @@ Row RunCgal(const Case& c, const implicitfit_bench::CgalParameters& p) {
 void Print(const std::string& cloud, size_t points, const std::string& method, const Row& r) {
   char err[32] = "-";
   if (std::isfinite(r.param_error)) std::snprintf(err, sizeof err, "%.1e", r.param_error);
-  std::printf("| %s | %zu | %s | %d/%d | %d/%d | %.2f | %.2f | %.2f | %s | %.2f |\n", cloud.c_str(), points,
-              method.c_str(), r.m.recovered, r.m.truth_counted, r.m.precise, r.m.detected_counted, r.m.mean_iou,
-              r.m.kind_accuracy, r.m.coverage, err, r.seconds);
+  std::printf("| %s | %zu | %s | %d/%d | %d/%d | %.2f | %.2f | %.2f | %s | %.2f |\n", cloud.c_str(),
+              points, method.c_str(), r.m.recovered, r.m.truth_counted, r.m.precise,
+              r.m.detected_counted, r.m.mean_iou, r.m.kind_accuracy, r.m.coverage, err, r.seconds);
   std::fflush(stdout);
 }
 
@@ -151,8 +153,8 @@ int main(int argc, char** argv) {
   }
   const std::string data = IMPLICITFIT_SHARED_DATA;
   std::vector<Case> cases;
-  for (const std::string name : {"test_PC33", "test_PC34", "test_PC35", "test_PC21", "train_PC124", "train_PC131",
-                                 "train_PC145", "train_PC155"}) {
+  for (const std::string name : {"test_PC33", "test_PC34", "test_PC35", "test_PC21", "train_PC124",
+                                 "train_PC131", "train_PC145", "train_PC155"}) {
     const std::string base = data + "/fit4cad/fit4cad_" + name;
     if (!std::ifstream(base + ".xyzl")) continue;
     Case c;
@@ -166,8 +168,9 @@ int main(int argc, char** argv) {
     cases.push_back(c);
     Case t = c;
     t.name = name + " (truth normals)";
-    t.cloud.normals = TruthNormals(c.cloud, c.labels, c.kinds, ReadFit4CadCoefficients(base + "/" + name + "_implicit.txt"),
-                                   c.cloud.normals);
+    t.cloud.normals =
+        TruthNormals(c.cloud, c.labels, c.kinds,
+                     ReadFit4CadCoefficients(base + "/" + name + "_implicit.txt"), c.cloud.normals);
     EnsureOrientedNormals(&t.cloud);
     if (!quick) cases.push_back(t);
   }
@@ -190,7 +193,9 @@ int main(int argc, char** argv) {
     cases.push_back({"generated scene " + std::to_string(seed), g.cloud, g.labels, g.kinds});
   }
 
-  std::printf("| cloud | points | method | recall | precision | mean IoU | kind acc. | coverage | param. err. | time (s) |\n");
+  std::printf(
+      "| cloud | points | method | recall | precision | mean IoU | kind acc. | coverage | param. "
+      "err. | time (s) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   double total_ours = 0, total_cgal = 0;
   int rec_ours = 0, rec_cgal = 0, rec_grid = 0, truth = 0;
@@ -219,14 +224,16 @@ int main(int argc, char** argv) {
           p.min_points_fraction = min_points;
           const Row r = RunCgal(c, p);
           if (first || r.m.recovered > best.m.recovered ||
-              (r.m.recovered == best.m.recovered && r.m.precise * best.m.detected_counted > best.m.precise * r.m.detected_counted))
+              (r.m.recovered == best.m.recovered &&
+               r.m.precise * best.m.detected_counted > best.m.precise * r.m.detected_counted))
             best = r, first = false;
         }
     Print(c.name, c.cloud.size(), "CGAL best of grid", best);
     rec_grid += best.m.recovered;
   }
   std::printf("\nrecovered ground-truth primitives: implicitfit %d/%d", rec_ours, truth);
-  if (cgal) std::printf(", CGAL defaults %d/%d, CGAL best of grid %d/%d", rec_cgal, truth, rec_grid, truth);
+  if (cgal)
+    std::printf(", CGAL defaults %d/%d, CGAL best of grid %d/%d", rec_cgal, truth, rec_grid, truth);
   std::printf("\ntotal detection time: implicitfit %.2f s", total_ours);
   if (cgal) std::printf(", CGAL defaults %.2f s", total_cgal);
   std::printf("\n");

@@ -8,7 +8,8 @@
 // sigma), radius limits and, for the cone, opening-angle limits. implicitfit runs with its
 // defaults (it estimates the scale itself).
 //
-// Usage: pcl_comparison [--sizes 10000,100000,1000000] [--seeds 3] [--kinds sphere,cylinder,cone,plane]
+// Usage: pcl_comparison [--sizes 10000,100000,1000000] [--seeds 3] [--kinds
+// sphere,cylinder,cone,plane]
 #include <pcl/ModelCoefficients.h>
 #include <pcl/point_types.h>
 #include <pcl/segmentation/sac_segmentation.h>
@@ -60,7 +61,8 @@ double Angle(Vec a, Vec b) {
 }
 
 // Named errors of a fitted parameter vector (model layout) against the truth.
-std::map<std::string, double> Errors(NodeType kind, const std::vector<double>& t, const std::vector<double>& p) {
+std::map<std::string, double> Errors(NodeType kind, const std::vector<double>& t,
+                                     const std::vector<double>& p) {
   std::map<std::string, double> e;
   if (p.empty()) return e;
   switch (kind) {
@@ -116,13 +118,19 @@ std::vector<double> RunPcl(const Truth& truth, const PointCloud& cloud, double s
   seg.setNormalDistanceWeight(0.1);
   seg.setRadiusLimits(0.0, 10.0 * truth.size);
   switch (truth.kind) {
-    case NodeType::kSphere: seg.setModelType(pcl::SACMODEL_SPHERE); break;
-    case NodeType::kCylinder: seg.setModelType(pcl::SACMODEL_CYLINDER); break;
+    case NodeType::kSphere:
+      seg.setModelType(pcl::SACMODEL_SPHERE);
+      break;
+    case NodeType::kCylinder:
+      seg.setModelType(pcl::SACMODEL_CYLINDER);
+      break;
     case NodeType::kCone:
       seg.setModelType(pcl::SACMODEL_CONE);
       seg.setMinMaxOpeningAngle(0.05, 1.5);
       break;
-    default: seg.setModelType(pcl::SACMODEL_NORMAL_PLANE); break;
+    default:
+      seg.setModelType(pcl::SACMODEL_NORMAL_PLANE);
+      break;
   }
   seg.setInputCloud(xyz);
   seg.setInputNormals(normals);
@@ -153,18 +161,26 @@ double Median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> sizes = {"10000", "100000", "1000000"}, kinds = {"sphere", "cylinder", "cone", "plane"};
+  std::vector<std::string> sizes = {"10000", "100000", "1000000"},
+                           kinds = {"sphere", "cylinder", "cone", "plane"};
   int seeds = 3;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--sizes")) sizes = Split(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--kinds")) kinds = Split(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--sizes"))
+      sizes = Split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--kinds"))
+      kinds = Split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seeds"))
+      seeds = std::atoi(argv[i + 1]);
     else {
-      std::fprintf(stderr, "usage: %s [--sizes N,N] [--seeds S] [--kinds sphere,cylinder,cone,plane]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--sizes N,N] [--seeds S] [--kinds sphere,cylinder,cone,plane]\n",
+                   argv[0]);
       return 2;
     }
   }
-  std::printf("| kind | points | implicitfit ms | PCL ms | time ratio | parameter | implicitfit error | PCL error | error ratio |\n");
+  std::printf(
+      "| kind | points | implicitfit ms | PCL ms | time ratio | parameter | implicitfit error | "
+      "PCL error | error ratio |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& kind : kinds) {
     const Truth truth = TruthOf(kind);
@@ -190,14 +206,16 @@ int main(int argc, char** argv) {
         fo.seed = seed;
         fo.compute_covariance = false;
         auto start = std::chrono::steady_clock::now();
-        const PrimitiveFitResult ours = FitPrimitive(sampled.cloud.points, sampled.cloud.normals, fo);
+        const PrimitiveFitResult ours =
+            FitPrimitive(sampled.cloud.points, sampled.cloud.normals, fo);
         t_ours.push_back(Seconds(start));
         start = std::chrono::steady_clock::now();
         const std::vector<double> pcl = RunPcl(truth, sampled.cloud, so.noise);
         t_pcl.push_back(Seconds(start));
         if (!ours.success) ++fail_ours;
         if (pcl.empty()) ++fail_pcl;
-        for (auto& [k, v] : Errors(truth.kind, truth.params, ours.success ? ours.parameters : std::vector<double>{}))
+        for (auto& [k, v] : Errors(truth.kind, truth.params,
+                                   ours.success ? ours.parameters : std::vector<double>{}))
           err_ours[k] += v / seeds;
         for (auto& [k, v] : Errors(truth.kind, truth.params, pcl)) err_pcl[k] += v / seeds;
       }
@@ -206,13 +224,15 @@ int main(int argc, char** argv) {
       for (auto& [name, e] : err_ours) {
         const double ep = err_pcl.count(name) ? err_pcl[name] : NAN;
         if (first)
-          std::printf("| %s | %d | %.1f | %.1f | %.2f | %s | %.3g | %.3g | %.3f |\n", kind.c_str(), n, mo, mp, mo / mp,
-                      name.c_str(), e, ep, e / ep);
+          std::printf("| %s | %d | %.1f | %.1f | %.2f | %s | %.3g | %.3g | %.3f |\n", kind.c_str(),
+                      n, mo, mp, mo / mp, name.c_str(), e, ep, e / ep);
         else
           std::printf("| | | | | | %s | %.3g | %.3g | %.3f |\n", name.c_str(), e, ep, e / ep);
         first = false;
       }
-      if (fail_ours || fail_pcl) std::printf("| | | failures: implicitfit %d, PCL %d of %d | | | | | | |\n", fail_ours, fail_pcl, seeds);
+      if (fail_ours || fail_pcl)
+        std::printf("| | | failures: implicitfit %d, PCL %d of %d | | | | | | |\n", fail_ours,
+                    fail_pcl, seeds);
       std::fflush(stdout);
     }
   }

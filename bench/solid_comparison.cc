@@ -56,7 +56,8 @@ Vec ClosestOnTriangle(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
   const double denom = 1.0 / (va + vb + vc);
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
@@ -67,19 +68,22 @@ struct Figures {
   size_t triangles = 0;
 };
 
-Figures Judge(const TriangleMesh& mesh, const implicitfit::Model& truth, const std::vector<Vec>& truth_points,
-              unsigned seed) {
+Figures Judge(const TriangleMesh& mesh, const implicitfit::Model& truth,
+              const std::vector<Vec>& truth_points, unsigned seed) {
   Figures fig;
   fig.triangles = mesh.triangles.size();
   std::map<std::pair<int, int>, int> uses;
   for (const Eigen::Vector3i& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    for (int k = 0; k < 3; ++k)
+      ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
   for (const auto& [e, n] : uses) fig.bad_edges += n != 2;
   // mesh -> truth at area-uniform mesh points.
   std::vector<double> cumulative;
   double area = 0;
   for (const Eigen::Vector3i& t : mesh.triangles) {
-    area += 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
+    area += 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]])
+                      .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]])
+                      .norm();
     cumulative.push_back(area);
   }
   std::mt19937_64 rng(seed);
@@ -87,16 +91,22 @@ Figures Judge(const TriangleMesh& mesh, const implicitfit::Model& truth, const s
   double sum_mt = 0, max_mt = 0, normals = 0;
   const int samples = 50000;
   for (int s = 0; s < samples; ++s) {
-    const size_t i = std::min(cumulative.size() - 1, static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), u(rng) * area) - cumulative.begin()));
+    const size_t i = std::min(
+        cumulative.size() - 1,
+        static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), u(rng) * area) -
+                            cumulative.begin()));
     const Eigen::Vector3i& t = mesh.triangles[i];
     const double r1 = std::sqrt(u(rng)), r2 = u(rng);
-    const Vec x = (1 - r1) * mesh.vertices[t[0]] + r1 * (1 - r2) * mesh.vertices[t[1]] + r1 * r2 * mesh.vertices[t[2]];
+    const Vec x = (1 - r1) * mesh.vertices[t[0]] + r1 * (1 - r2) * mesh.vertices[t[1]] +
+                  r1 * r2 * mesh.vertices[t[2]];
     double f;
     const Vec g = truth.Gradient(x, &f);
     const double d = std::abs(f) / g.norm();
     sum_mt += d;
     max_mt = std::max(max_mt, d);
-    const Vec n = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).normalized();
+    const Vec n = (mesh.vertices[t[1]] - mesh.vertices[t[0]])
+                      .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]])
+                      .normalized();
     normals += n.dot(g.normalized());
   }
   // truth -> mesh: exact distance to the nearest of the 16 triangles with the nearest centroids.
@@ -115,7 +125,9 @@ Figures Judge(const TriangleMesh& mesh, const implicitfit::Model& truth, const s
     double best = 1e300;
     for (int i : idx) {
       const Eigen::Vector3i& t = mesh.triangles[i];
-      best = std::min(best, (p - ClosestOnTriangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]])).norm());
+      best = std::min(best, (p - ClosestOnTriangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]],
+                                                   mesh.vertices[t[2]]))
+                                .norm());
     }
     sum_tm += best;
     max_tm = std::max(max_tm, best);
@@ -139,9 +151,10 @@ TriangleMesh FromPcl(const pcl::PolygonMesh& poly) {
 }
 
 void Row(const char* solid, const char* method, const Figures& f, double size) {
-  std::printf("| %s | %s | %.5f (%.2e) | %.5f (%.2e) | %.4f | %s (%ld) | %zu | %.2f |\n", solid, method, f.chamfer,
-              f.chamfer / size, f.hausdorff, f.hausdorff / size, f.normal_consistency, f.bad_edges ? "no" : "yes",
-              f.bad_edges, f.triangles, f.seconds);
+  std::printf("| %s | %s | %.5f (%.2e) | %.5f (%.2e) | %.4f | %s (%ld) | %zu | %.2f |\n", solid,
+              method, f.chamfer, f.chamfer / size, f.hausdorff, f.hausdorff / size,
+              f.normal_consistency, f.bad_edges ? "no" : "yes", f.bad_edges, f.triangles,
+              f.seconds);
 }
 
 }  // namespace
@@ -151,11 +164,16 @@ int main(int argc, char** argv) {
   double outliers = 0.0;
   unsigned seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--points")) points = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--outliers")) outliers = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seed")) seed = static_cast<unsigned>(std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--points"))
+      points = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--outliers"))
+      outliers = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seed"))
+      seed = static_cast<unsigned>(std::atoi(argv[i + 1]));
   }
-  std::printf("| solid | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight (bad edges) | triangles | seconds |\n");
+  std::printf(
+      "| solid | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight "
+      "(bad edges) | triangles | seconds |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const implicitfit::GeneratedSolid& solid : implicitfit::AllGeneratedSolids()) {
     const double size = (solid.box_max - solid.box_min).maxCoeff();
@@ -174,13 +192,17 @@ int main(int argc, char** argv) {
     clean.seed = seed + 1000;
     const std::vector<Vec> truth_points = implicitfit::SampleModel(solid.truth, clean).cloud.points;
 
-    // implicitfit: scene from ground-truth labels, reconstruct, mesh (128 cells on the longest side).
-    const std::vector<int> labels = implicitfit::GroundTruthLabels(solid, cloud.cloud, 4 * so.noise);
+    // implicitfit: scene from ground-truth labels, reconstruct, mesh (128 cells on the longest
+    // side).
+    const std::vector<int> labels =
+        implicitfit::GroundTruthLabels(solid, cloud.cloud, 4 * so.noise);
     std::vector<implicitfit::NodeType> kinds;
     for (const implicitfit::Model& p : solid.primitives) kinds.push_back(p.nodes()[0].type);
     auto t0 = std::chrono::steady_clock::now();
-    const auto scene = implicitfit::FitLabelledPrimitives(cloud.cloud.points, cloud.cloud.normals, labels, kinds, seed);
-    const implicitfit::SolidReconstruction r = implicitfit::ReconstructSolid(cloud.cloud.points, cloud.cloud.normals, scene);
+    const auto scene = implicitfit::FitLabelledPrimitives(cloud.cloud.points, cloud.cloud.normals,
+                                                          labels, kinds, seed);
+    const implicitfit::SolidReconstruction r =
+        implicitfit::ReconstructSolid(cloud.cloud.points, cloud.cloud.normals, scene);
     implicitfit::MeshOptions mo;
     mo.has_box = true;
     mo.box_min = solid.box_min;
@@ -190,13 +212,16 @@ int main(int argc, char** argv) {
     const double ours_seconds = Seconds(t0);
     Figures f = Judge(ours, solid.truth, truth_points, seed);
     f.seconds = ours_seconds;
-    Row(solid.name.c_str(), r.success ? "implicitfit reconstruct + mesh" : "implicitfit (reconstruct failed)", f, size);
+    Row(solid.name.c_str(),
+        r.success ? "implicitfit reconstruct + mesh" : "implicitfit (reconstruct failed)", f, size);
 
     pcl::PointCloud<pcl::PointNormal>::Ptr pc(new pcl::PointCloud<pcl::PointNormal>);
     for (size_t i = 0; i < cloud.cloud.size(); ++i) {
       pcl::PointNormal p;
-      p.x = cloud.cloud.points[i].x(), p.y = cloud.cloud.points[i].y(), p.z = cloud.cloud.points[i].z();
-      p.normal_x = cloud.cloud.normals[i].x(), p.normal_y = cloud.cloud.normals[i].y(), p.normal_z = cloud.cloud.normals[i].z();
+      p.x = cloud.cloud.points[i].x(), p.y = cloud.cloud.points[i].y(),
+      p.z = cloud.cloud.points[i].z();
+      p.normal_x = cloud.cloud.normals[i].x(), p.normal_y = cloud.cloud.normals[i].y(),
+      p.normal_z = cloud.cloud.normals[i].z();
       pc->push_back(p);
     }
     for (int depth : {7, 8}) {

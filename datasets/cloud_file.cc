@@ -19,16 +19,19 @@ namespace {
 PointCloud ReadByExtension(const std::string& path, CloudFileInfo* info) {
   const size_t dot = path.find_last_of('.');
   std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == "xyz" || ext == "pwn" || ext == "txt") return ReadXyzFile(path, info);
   if (ext == "xyzl") return ReadXyzFile(path, info, XyzColumns::kLabelled);
 #ifdef IMPLICITFIT_HAVE_PCL
   if (ext == "ply") return ReadPlyFile(path, info);
   if (ext == "pcd") return ReadPcdFile(path, info);
-  throw FileError(path, "unsupported cloud format '." + ext + "' (supported: .xyz .pwn .txt .xyzl .ply .pcd)");
+  throw FileError(
+      path, "unsupported cloud format '." + ext + "' (supported: .xyz .pwn .txt .xyzl .ply .pcd)");
 #else
-  throw FileError(path, "unsupported cloud format '." + ext +
-                            "' (supported: .xyz .pwn .txt .xyzl; .ply and .pcd need a build with PCL)");
+  throw FileError(path,
+                  "unsupported cloud format '." + ext +
+                      "' (supported: .xyz .pwn .txt .xyzl; .ply and .pcd need a build with PCL)");
 #endif
 }
 
@@ -46,9 +49,10 @@ PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info) {
   try {
     ReestimateNormalsAt(&cloud, out.invalid_normals);
   } catch (const std::invalid_argument&) {
-    throw FileError(path, std::to_string(out.invalid_normals.size()) +
-                              " normals are NaN, infinite or zero-length and the cloud is too small "
-                              "to re-estimate them");
+    throw FileError(path,
+                    std::to_string(out.invalid_normals.size()) +
+                        " normals are NaN, infinite or zero-length and the cloud is too small "
+                        "to re-estimate them");
   }
   return cloud;
 }

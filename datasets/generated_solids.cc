@@ -25,7 +25,8 @@ std::vector<std::vector<double>> BoxFaces(const Vec& half) {
   return faces;
 }
 
-int AddBox(Model* m, const Vec& half, double delta, double epsilon, int order, GeneratedSolid* solid) {
+int AddBox(Model* m, const Vec& half, double delta, double epsilon, int order,
+           GeneratedSolid* solid) {
   std::vector<int> faces;
   for (const auto& f : BoxFaces(half)) {
     faces.push_back(m->AddPrimitive(NodeType::kPlane, f));
@@ -72,7 +73,8 @@ GeneratedSolid BossOnSlabSolid() {
   const int cyl = s.truth.AddPrimitive(NodeType::kCylinder, boss);
   const int cap = s.truth.AddPrimitive(NodeType::kPlane, top);
   const int bottom = s.truth.AddPrimitive(NodeType::kPlane, {0, 0, -1, 0.2});
-  const int boss_node = s.truth.AddOperator(NodeType::kIntersection, {cyl, cap, bottom}, 0.1, 0.1, 0);
+  const int boss_node =
+      s.truth.AddOperator(NodeType::kIntersection, {cyl, cap, bottom}, 0.1, 0.1, 0);
   s.primitives.push_back(One(NodeType::kCylinder, boss));
   s.primitives.push_back(One(NodeType::kPlane, top));
   s.truth.SetRoot(s.truth.AddOperator(NodeType::kUnion, {slab, boss_node}, 0.15, 0.1, 3));
@@ -85,7 +87,8 @@ std::vector<GeneratedSolid> AllGeneratedSolids() {
   return {RoundedBoxSolid(), PlateWithFilletedBoreSolid(), BossOnSlabSolid()};
 }
 
-std::vector<int> GroundTruthLabels(const GeneratedSolid& solid, const PointCloud& cloud, double band) {
+std::vector<int> GroundTruthLabels(const GeneratedSolid& solid, const PointCloud& cloud,
+                                   double band) {
   std::vector<int> labels(cloud.size(), -1);
   for (size_t i = 0; i < cloud.size(); ++i) {
     double best = band;
@@ -93,7 +96,8 @@ std::vector<int> GroundTruthLabels(const GeneratedSolid& solid, const PointCloud
       double f;
       const Eigen::Vector3d g = solid.primitives[k].Gradient(cloud.points[i], &f);
       const double d = std::abs(f) / g.norm();
-      if (d < best && cloud.has_normals() && std::abs(g.normalized().dot(cloud.normals[i])) > 0.999) {
+      if (d < best && cloud.has_normals() &&
+          std::abs(g.normalized().dot(cloud.normals[i])) > 0.999) {
         best = d;
         labels[i] = static_cast<int>(k);
       }

@@ -32,6 +32,7 @@ std::vector<GeneratedSolid> AllGeneratedSolids();
 
 // Label of each point: the primitive within `band` of the point whose gradient is within
 // acos(0.999) of the point's normal (the nearest when several), -1 otherwise (fillets, outliers).
-std::vector<int> GroundTruthLabels(const GeneratedSolid& solid, const PointCloud& cloud, double band);
+std::vector<int> GroundTruthLabels(const GeneratedSolid& solid, const PointCloud& cloud,
+                                   double band);
 
 }  // namespace implicitfit

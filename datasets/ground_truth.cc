@@ -41,7 +41,8 @@ std::vector<std::vector<double>> ReadFit4CadCoefficients(const std::string& path
     const size_t open = line.find(":=[");
     if (open == std::string::npos) continue;
     const size_t a = line.find('[', open + 3), b = line.find(']', a == std::string::npos ? 0 : a);
-    if (a == std::string::npos || b == std::string::npos) throw LineError(path, number, "expected [coefficients]");
+    if (a == std::string::npos || b == std::string::npos)
+      throw LineError(path, number, "expected [coefficients]");
     std::istringstream words(line.substr(a + 1, b - a - 1));
     std::vector<double> c;
     double v;
@@ -93,7 +94,8 @@ std::vector<int> ReadPlyIntProperty(const std::string& path, const std::string& 
       if (!(words >> v)) throw LineError(path, number, "too few values");
     values.push_back(static_cast<int>(v));
   }
-  if (static_cast<long>(values.size()) != count) throw FileError(path, "fewer vertices than the header says");
+  if (static_cast<long>(values.size()) != count)
+    throw FileError(path, "fewer vertices than the header says");
   return values;
 }
 

@@ -21,7 +21,8 @@ Model ReadModelFile(const std::string& path) {
     // "[json.exception.out_of_range.406] number overflow parsing '1e3081'".
     std::string what = e.what();
     const size_t at = what.find("] ");
-    throw FileError(path, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+    throw FileError(path,
+                    "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
   }
   try {
     return ModelFromJson(document);

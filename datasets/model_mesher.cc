@@ -1,14 +1,14 @@
 #include "datasets/model_mesher.h"
 
+#include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFlyingEdges3D.h>
+#include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkCellArray.h>
-#include <vtkIdList.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,21 +32,24 @@ struct Grid {
   double h = 0.0;
   int n[3] = {0, 0, 0};
   std::vector<double> values;
-  long Index(int i, int j, int k) const { return i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k); }
+  long Index(int i, int j, int k) const {
+    return i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k);
+  }
   Vec Point(int i, int j, int k) const { return origin + h * Vec(i, j, k); }
 };
 
 void FillGrid(const Model& model, int num_threads, Grid* grid) {
   grid->values.assign(static_cast<size_t>(grid->n[0]) * grid->n[1] * grid->n[2], 0.0);
-  const int threads = std::max(1, num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = std::max(
+      1, num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
   const double tiny = 1e-12 * grid->h;
   auto slab = [&](int t) {
     for (int k = t; k < grid->n[2]; k += threads)
       for (int j = 0; j < grid->n[1]; ++j)
         for (int i = 0; i < grid->n[0]; ++i) {
           double v = model.Value(grid->Point(i, j, k));
-          if (std::isnan(v)) v = grid->h;   // undefined counts as outside
-          if (v == 0.0) v = tiny;           // no vertex exactly on a grid node
+          if (std::isnan(v)) v = grid->h;  // undefined counts as outside
+          if (v == 0.0) v = tiny;          // no vertex exactly on a grid node
           grid->values[grid->Index(i, j, k)] = v;
         }
   };
@@ -117,7 +120,8 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
     const double cells = std::ceil((hi[a] - lo[a]) / h - 1e-9);
     points *= cells + 1;
     if (points > static_cast<double>(options.max_grid_points))
-      throw std::invalid_argument("mesh grid too fine: more than " + std::to_string(options.max_grid_points) +
+      throw std::invalid_argument("mesh grid too fine: more than " +
+                                  std::to_string(options.max_grid_points) +
                                   " grid points (raise --cell)");
     grid.n[a] = static_cast<int>(cells) + 1;
   }
@@ -153,15 +157,17 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
   mesh.vertices.resize(num_points);
   // 3. Each vertex: find its grid edge (the edge from the nearest node whose linear
   // interpolation lands on the vertex), then the root of f on that edge.
-  const int threads = std::max(1, options.num_threads > 0 ? options.num_threads
-                                                          : static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads =
+      std::max(1, options.num_threads > 0 ? options.num_threads
+                                          : static_cast<int>(std::thread::hardware_concurrency()));
   std::vector<double> abs_value(num_points, 0.0);
   auto refine = [&](int t) {
     double u[3];
     for (vtkIdType v = t; v < num_points; v += threads) {
       poly->GetPoint(v, u);
       int node[3];
-      for (int a = 0; a < 3; ++a) node[a] = std::clamp(static_cast<int>(std::lround(u[a])), 0, grid.n[a] - 1);
+      for (int a = 0; a < 3; ++a)
+        node[a] = std::clamp(static_cast<int>(std::lround(u[a])), 0, grid.n[a] - 1);
       const double f_node = grid.values[grid.Index(node[0], node[1], node[2])];
       double best = std::numeric_limits<double>::infinity();
       int best_other[3] = {node[0], node[1], node[2]};
@@ -249,7 +255,8 @@ void WriteMeshPlyFile(const TriangleMesh& mesh, const std::string& path) {
     throw std::invalid_argument("WriteMeshPlyFile: normals do not match the vertices");
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by implicitfit mesh\n";
   out += "element vertex " + std::to_string(mesh.vertices.size()) + "\n";
-  for (const char* name : {"x", "y", "z", "nx", "ny", "nz"}) out += std::string("property double ") + name + "\n";
+  for (const char* name : {"x", "y", "z", "nx", "ny", "nz"})
+    out += std::string("property double ") + name + "\n";
   out += "element face " + std::to_string(mesh.triangles.size()) + "\n";
   out += "property list uchar int vertex_indices\nend_header\n";
   const std::uint16_t one = 1;
@@ -266,7 +273,9 @@ void WriteMeshPlyFile(const TriangleMesh& mesh, const std::string& path) {
   for (size_t v = 0; v < mesh.vertices.size(); ++v) {
     for (int k = 0; k < 3; ++k) {
       const double x = mesh.vertices[v][k];
-      if (!std::isfinite(x)) throw std::invalid_argument("WriteMeshPlyFile: vertex " + std::to_string(v) + " is not finite");
+      if (!std::isfinite(x))
+        throw std::invalid_argument("WriteMeshPlyFile: vertex " + std::to_string(v) +
+                                    " is not finite");
       append(&x, 8);
     }
     for (int k = 0; k < 3; ++k) append(&mesh.normals[v][k], 8);

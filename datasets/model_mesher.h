@@ -27,23 +27,24 @@ namespace implicitfit {
 
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3d> normals;    // one unit normal per vertex
-  std::vector<Eigen::Vector3i> triangles;  // indices into vertices, counter-clockwise seen from outside
+  std::vector<Eigen::Vector3d> normals;  // one unit normal per vertex
+  std::vector<Eigen::Vector3i>
+      triangles;  // indices into vertices, counter-clockwise seen from outside
 };
 
 struct MeshOptions {
-  bool has_box = false;                    // use box_min/box_max instead of the default box
+  bool has_box = false;  // use box_min/box_max instead of the default box
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
-  double cell = 0.0;                       // grid spacing; 0: longest box side / 100
-  int num_threads = 0;                     // for the grid values; 0 = hardware concurrency
-  long max_grid_points = 64L << 20;        // refuse finer grids (memory: 8 bytes a point)
+  double cell = 0.0;                 // grid spacing; 0: longest box side / 100
+  int num_threads = 0;               // for the grid values; 0 = hardware concurrency
+  long max_grid_points = 64L << 20;  // refuse finer grids (memory: 8 bytes a point)
 };
 
 struct MeshResult {
   TriangleMesh mesh;
-  Eigen::Vector3d box_min, box_max;        // the box that was gridded
-  double cell = 0.0;                       // the grid spacing used
-  double max_abs_value = 0.0;              // max |f| over the refined vertices
+  Eigen::Vector3d box_min, box_max;  // the box that was gridded
+  double cell = 0.0;                 // the grid spacing used
+  double max_abs_value = 0.0;        // max |f| over the refined vertices
 };
 
 // Throws std::invalid_argument for an invalid box or cell (or a grid above max_grid_points).

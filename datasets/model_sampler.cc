@@ -40,16 +40,26 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       around(n * p[3] / n.squaredNorm(), 1.0);
       return;
     }
-    case NodeType::kSphere: around(Vec(p[0], p[1], p[2]), p[3] * 1.05); return;
-    case NodeType::kCylinder: around(Vec(p[0], p[1], p[2]), 2.0 * p[6]); return;
+    case NodeType::kSphere:
+      around(Vec(p[0], p[1], p[2]), p[3] * 1.05);
+      return;
+    case NodeType::kCylinder:
+      around(Vec(p[0], p[1], p[2]), 2.0 * p[6]);
+      return;
     case NodeType::kCone: {
       const Vec a = Vec(p[3], p[4], p[5]).normalized();
       around(Vec(p[0], p[1], p[2]) + a, 1.0 + std::tan(p[6]));
       return;
     }
-    case NodeType::kTorus: around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05); return;
-    case NodeType::kEllipsoid: around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]})); return;
-    case NodeType::kQuadric: around(Vec::Zero(), 2.0); return;
+    case NodeType::kTorus:
+      around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05);
+      return;
+    case NodeType::kEllipsoid:
+      around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]}));
+      return;
+    case NodeType::kQuadric:
+      around(Vec::Zero(), 2.0);
+      return;
     case NodeType::kBernsteinPatch: {
       // The patch is meant inside its tetrahedron (the fitters place the cloud there): its
       // bounding box, 5% larger on every side so a zero set touching a face is kept.
@@ -67,9 +77,14 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       *lo = node.grid.BoxMin();
       *hi = node.grid.BoxMax();
       return;
-    case NodeType::kBox: around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm()); return;
-    case NodeType::kParaboloid: around(Vec(p[0], p[1], p[2]), 1.0); return;  // the cap |w| <= 1
-    case NodeType::kBlobs: {  // every blob's centre +- its reach (gaussian: where a e^(-b R^2) = T/4)
+    case NodeType::kBox:
+      around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm());
+      return;
+    case NodeType::kParaboloid:
+      around(Vec(p[0], p[1], p[2]), 1.0);
+      return;                 // the cap |w| <= 1
+    case NodeType::kBlobs: {  // every blob's centre +- its reach (gaussian: where a e^(-b R^2) =
+                              // T/4)
       const int m = node.count;
       const double t = std::max(std::abs(p[5 * m]), 1e-12);
       for (int i = 0; i < m; ++i) {
@@ -102,7 +117,9 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
     case NodeType::kMorph:
     case NodeType::kUnion:
     case NodeType::kIntersection:
-    case NodeType::kDifference: ChildrenBox(model, node, lo, hi); return;
+    case NodeType::kDifference:
+      ChildrenBox(model, node, lo, hi);
+      return;
   }
 }
 
@@ -112,7 +129,9 @@ bool Inside(const Vec& x, const Vec& lo, const Vec& hi) {
 
 }  // namespace
 
-void SamplingBox(const Model& model, Vec* box_min, Vec* box_max) { NodeBox(model, model.root(), box_min, box_max); }
+void SamplingBox(const Model& model, Vec* box_min, Vec* box_max) {
+  NodeBox(model, model.root(), box_min, box_max);
+}
 
 SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
   SampledCloud out;
@@ -127,7 +146,8 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
   std::normal_distribution<double> gauss(0.0, 1.0);
   auto uniform_in_box = [&]() {
     Vec x;
-    for (int k = 0; k < 3; ++k) x[k] = out.box_min[k] + u01(rng) * (out.box_max[k] - out.box_min[k]);
+    for (int k = 0; k < 3; ++k)
+      x[k] = out.box_min[k] + u01(rng) * (out.box_max[k] - out.box_min[k]);
     return x;
   };
   const int outliers = static_cast<int>(std::lround(options.outlier_fraction * options.count));
@@ -157,12 +177,14 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
     throw std::runtime_error("could not sample the zero set: it does not cross the box");
   auto uniform_on_mesh = [&]() {
     const double r = u01(rng) * area;
-    const size_t i = std::min(cumulative_area.size() - 1,
+    const size_t i = std::min(
+        cumulative_area.size() - 1,
         static_cast<size_t>(std::upper_bound(cumulative_area.begin(), cumulative_area.end(), r) -
                             cumulative_area.begin()));
     const Eigen::Vector3i& t = mesh.triangles[i];
     const double s = std::sqrt(u01(rng)), w = u01(rng);
-    return Vec((1 - s) * mesh.vertices[t[0]] + s * (1 - w) * mesh.vertices[t[1]] + s * w * mesh.vertices[t[2]]);
+    return Vec((1 - s) * mesh.vertices[t[0]] + s * (1 - w) * mesh.vertices[t[1]] +
+               s * w * mesh.vertices[t[2]]);
   };
 
   std::vector<Vec> pts, nrm;
@@ -170,8 +192,9 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
   const long max_attempts = 200L * options.count + 10000;
   while (static_cast<int>(pts.size()) < inliers) {
     if (++attempts > max_attempts)
-      throw std::runtime_error("could not sample the zero set: too few projections landed inside the box" +
-                               std::string(partial ? " and the view cone" : ""));
+      throw std::runtime_error(
+          "could not sample the zero set: too few projections landed inside the box" +
+          std::string(partial ? " and the view cone" : ""));
     Vec x = uniform_on_mesh();
     bool converged = false;
     for (int it = 0; it < 50; ++it) {

@@ -4,8 +4,8 @@
 //      given) with datasets/model_mesher.h (80 cells along the longest side), draw a triangle
 //      with probability proportional to its area and a uniform point in it,
 //   2. project it onto f = 0 by Newton steps
-//      x <- x - f(x) grad f(x) / |grad f(x)|^2 until |f| < 1e-12 (1 + |x|_inf) (or give up after 50);
-//      the points move by O(h^2 curvature) (h: the mesh cell), so the density stays uniform by
+//      x <- x - f(x) grad f(x) / |grad f(x)|^2 until |f| < 1e-12 (1 + |x|_inf) (or give up after
+//      50); the points move by O(h^2 curvature) (h: the mesh cell), so the density stays uniform by
 //      area up to that order (the former draw, uniform in the box then projected, followed the
 //      catchment volume: on a half ball 52% of the points fell on the disk, 33% of the area),
 //   3. keep it if f is smooth there (f(x +- h n) = +-h |grad f| within 10%, h = 1e-4 of the box
@@ -24,20 +24,20 @@
 namespace implicitfit {
 
 struct SampleOptions {
-  int count = 1000;                       // points in the output (inliers + outliers)
-  double noise = 0.0;                     // sigma of the displacement along the normal
-  double outlier_fraction = 0.0;          // in [0, 1)
+  int count = 1000;               // points in the output (inliers + outliers)
+  double noise = 0.0;             // sigma of the displacement along the normal
+  double outlier_fraction = 0.0;  // in [0, 1)
   unsigned seed = 1;
   Eigen::Vector3d view_dir = Eigen::Vector3d::Zero();  // zero: no partial view
-  double view_angle_deg = 180.0;          // keep normals within this angle of view_dir
-  bool has_box = false;                   // use box_min/box_max instead of the model's box
+  double view_angle_deg = 180.0;                       // keep normals within this angle of view_dir
+  bool has_box = false;  // use box_min/box_max instead of the model's box
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
 };
 
 struct SampledCloud {
   PointCloud cloud;
-  std::vector<bool> is_outlier;           // truth, one per point
-  Eigen::Vector3d box_min, box_max;       // the box that was sampled
+  std::vector<bool> is_outlier;      // truth, one per point
+  Eigen::Vector3d box_min, box_max;  // the box that was sampled
 };
 
 // Throws std::runtime_error when the zero set cannot be reached inside the box.

@@ -1,8 +1,7 @@
 #include "datasets/neighbourhoods.h"
 
-#include <flann/flann.hpp>
-
 #include <algorithm>
+#include <flann/flann.hpp>
 #include <stdexcept>
 
 #include "model/median.h"
@@ -20,7 +19,8 @@ Neighbourhoods FindNeighbourhoods(const std::vector<Eigen::Vector3d>& points,
   for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) data[3 * i + k] = points[i][k] - centroid[k];
 
-  const int max_k = std::max(1, std::min<int>(std::max(options.max_k, options.min_k), static_cast<int>(n) - 1));
+  const int max_k =
+      std::max(1, std::min<int>(std::max(options.max_k, options.min_k), static_cast<int>(n) - 1));
   const int min_k = std::max(1, std::min(options.min_k, max_k));
   flann::Matrix<double> matrix(data.data(), n, 3);
   flann::Index<flann::L2_Simple<double>> index(matrix, flann::KDTreeSingleIndexParams(10));
@@ -36,7 +36,8 @@ Neighbourhoods FindNeighbourhoods(const std::vector<Eigen::Vector3d>& points,
   std::vector<double> d6;
   d6.reserve(n);
   for (size_t i = 0; i < n; ++i)
-    if (squared[i].size() > static_cast<size_t>(spacing_rank)) d6.push_back(squared[i][spacing_rank]);
+    if (squared[i].size() > static_cast<size_t>(spacing_rank))
+      d6.push_back(squared[i][spacing_rank]);
   Neighbourhoods out;
   out.spacing = std::sqrt(Median(std::move(d6)));  // 0 when no point has 6 neighbours
   out.radius = options.radius_factor * out.spacing;

@@ -20,9 +20,10 @@ struct NeighbourhoodOptions {
 };
 
 struct Neighbourhoods {
-  std::vector<std::vector<int>> indices;  // per point, its neighbours (itself excluded), nearest first
-  double spacing = 0.0;                   // s, the median 6th-neighbour distance
-  double radius = 0.0;                    // radius_factor * s
+  std::vector<std::vector<int>>
+      indices;           // per point, its neighbours (itself excluded), nearest first
+  double spacing = 0.0;  // s, the median 6th-neighbour distance
+  double radius = 0.0;   // radius_factor * s
 };
 
 // Throws std::invalid_argument when the cloud has fewer than 2 points.

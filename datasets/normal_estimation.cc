@@ -8,7 +8,8 @@
 namespace implicitfit {
 namespace {
 
-Eigen::Vector3d PcaNormal(const std::vector<Eigen::Vector3d>& points, size_t i, const std::vector<int>& nb) {
+Eigen::Vector3d PcaNormal(const std::vector<Eigen::Vector3d>& points, size_t i,
+                          const std::vector<int>& nb) {
   // Centre on p_i first (cancels large coordinates), then the covariance about the mean.
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int j : nb) mean += points[j] - points[i];
@@ -33,7 +34,8 @@ double MeanSize(const Neighbourhoods& nb) {
 std::vector<Eigen::Vector3d> EstimatePcaNormals(const std::vector<Eigen::Vector3d>& points,
                                                 const Neighbourhoods& neighbourhoods) {
   std::vector<Eigen::Vector3d> normals(points.size());
-  for (size_t i = 0; i < points.size(); ++i) normals[i] = PcaNormal(points, i, neighbourhoods.indices[i]);
+  for (size_t i = 0; i < points.size(); ++i)
+    normals[i] = PcaNormal(points, i, neighbourhoods.indices[i]);
   return normals;
 }
 
@@ -62,7 +64,8 @@ NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& optio
   const std::string prefix = estimate ? "estimated, " : "read from file, ";
   if (options.viewpoint) {
     result.flipped = OrientTowardViewpoint(cloud->points, *options.viewpoint, &cloud->normals);
-    result.action = prefix + (estimate ? "oriented toward viewpoint" : "re-oriented toward viewpoint");
+    result.action =
+        prefix + (estimate ? "oriented toward viewpoint" : "re-oriented toward viewpoint");
   } else {
     result.flipped = OrientByMinimumSpanningTree(cloud->points, nb.indices, &cloud->normals);
     result.action = prefix + (estimate ? "MST-oriented" : "MST-re-oriented");

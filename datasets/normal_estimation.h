@@ -33,10 +33,10 @@ struct NormalResult {
   // "read from file", "read from file, re-oriented toward viewpoint", "read from file,
   // MST-re-oriented", "estimated, oriented toward viewpoint" or "estimated, MST-oriented".
   std::string action;
-  size_t estimated = 0;            // normals computed by PCA
-  size_t flipped = 0;              // normals whose sign orientation changed
-  double opposed_fraction = 0.0;   // detector value on the file's normals (0 when estimated)
-  double mean_neighbours = 0.0;    // mean neighbourhood size used (0 when nothing was computed)
+  size_t estimated = 0;           // normals computed by PCA
+  size_t flipped = 0;             // normals whose sign orientation changed
+  double opposed_fraction = 0.0;  // detector value on the file's normals (0 when estimated)
+  double mean_neighbours = 0.0;   // mean neighbourhood size used (0 when nothing was computed)
 };
 
 // Fills cloud->normals when empty (or when options.reestimate), and orients them. Throws

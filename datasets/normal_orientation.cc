@@ -7,7 +7,8 @@
 
 namespace implicitfit {
 
-size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& viewpoint,
+size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points,
+                             const Eigen::Vector3d& viewpoint,
                              std::vector<Eigen::Vector3d>* normals) {
   size_t flipped = 0;
   for (size_t i = 0; i < points.size(); ++i) {
@@ -26,8 +27,8 @@ constexpr size_t kMstNeighbours = 8;
 // Agreement of n_j with n_i mirrored across the plane halfway between p_i and p_j (König &
 // Gumhold 2009): the mirror image of n_i is exactly n_j for two points of a sphere, and for
 // the two sides of a symmetric crease or of a thin sheet, where the plain n_i . n_j misleads.
-double Agreement(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals, int i,
-                 int j) {
+double Agreement(const std::vector<Eigen::Vector3d>& points,
+                 const std::vector<Eigen::Vector3d>& normals, int i, int j) {
   const Eigen::Vector3d e = points[j] - points[i];
   const double length = e.norm();
   if (length == 0.0) return normals[i].dot(normals[j]);
@@ -55,7 +56,8 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
   // Seeds in decreasing x: the first unvisited one is the max-x point of its component.
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return points[a].x() > points[b].x(); });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return points[a].x() > points[b].x(); });
 
   std::vector<char> done(n, 0);
   size_t flipped = 0;

@@ -6,16 +6,16 @@
 //   faces the sensor that saw its point.
 // - Minimum spanning tree propagation (Hoppe, DeRose, Duchamp, McDonald, Stuetzle 1992, §3.3):
 //   over the symmetric graph of each point's 8 nearest neighbours (a sparse graph, as Hoppe's
-//   Riemannian graph; wider ones bridge thin gaps between surfaces) with edge cost 1 - |a_ij|, grow a minimum spanning tree
-//   (Prim) from a seed and flip each newly reached normal n_j whose agreement a_ij with its
-//   tree parent is negative, so orientation travels along the most reliable edges first.
-//   Hoppe uses a_ij = n_i . n_j; here a_ij = (M n_i) . n_j with M the reflection across the
-//   plane bisecting p_i p_j (König & Gumhold, "Consistent propagation of normal orientations
-//   in point clouds", VMV 2009): exact for two points of a sphere, and right across symmetric
-//   creases and between the two sides of thin sheets, where n_i . n_j has the wrong sign. Each connected component is seeded
-//   at its point of largest x, whose normal gets the outward guess n_x >= 0 (at the extreme
-//   point in x of a closed shape, the outward normal is +x).
-//   Known limit: surfaces that pass through each other (two overlapping full spheres, as in
+//   Riemannian graph; wider ones bridge thin gaps between surfaces) with edge cost 1 - |a_ij|, grow
+//   a minimum spanning tree (Prim) from a seed and flip each newly reached normal n_j whose
+//   agreement a_ij with its tree parent is negative, so orientation travels along the most reliable
+//   edges first. Hoppe uses a_ij = n_i . n_j; here a_ij = (M n_i) . n_j with M the reflection
+//   across the plane bisecting p_i p_j (König & Gumhold, "Consistent propagation of normal
+//   orientations in point clouds", VMV 2009): exact for two points of a sphere, and right across
+//   symmetric creases and between the two sides of thin sheets, where n_i . n_j has the wrong sign.
+//   Each connected component is seeded at its point of largest x, whose normal gets the outward
+//   guess n_x >= 0 (at the extreme point in x of a closed shape, the outward normal is +x). Known
+//   limit: surfaces that pass through each other (two overlapping full spheres, as in
 //   cgal_spheres_10.ply) can come out with one of them inverted.
 // - Detector: the fraction of neighbour pairs with nearly parallel lines (|n_i . n_j| > 0.5)
 //   whose normals oppose (n_i . n_j < 0). About 0 for oriented normals of a surface sampled
@@ -28,7 +28,8 @@
 
 namespace implicitfit {
 
-size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& viewpoint,
+size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points,
+                             const Eigen::Vector3d& viewpoint,
                              std::vector<Eigen::Vector3d>* normals);
 
 size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,

@@ -52,11 +52,13 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points) {
   t.median_variation = Median(variation);
   char text[160];
   if (t.median_share > kMaxShare) {
-    std::snprintf(text, sizeof text, "a neighbourhood holds %.0f%% of the cloud: not local", 100 * t.median_share);
+    std::snprintf(text, sizeof text, "a neighbourhood holds %.0f%% of the cloud: not local",
+                  100 * t.median_share);
     t.trusted = false;
     t.reason = text;
   } else if (t.median_variation > kMaxVariation) {
-    std::snprintf(text, sizeof text, "surface variation %.2g > %.2g: neighbourhoods without a tangent plane",
+    std::snprintf(text, sizeof text,
+                  "surface variation %.2g > %.2g: neighbourhoods without a tangent plane",
                   t.median_variation, kMaxVariation);
     t.trusted = false;
     t.reason = text;

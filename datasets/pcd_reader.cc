@@ -36,7 +36,8 @@ struct PcdHeader {
 
   unsigned long long point_size() const {
     unsigned long long s = 0;
-    for (size_t i = 0; i < sizes.size(); ++i) s += static_cast<unsigned long long>(sizes[i]) * counts[i];
+    for (size_t i = 0; i < sizes.size(); ++i)
+      s += static_cast<unsigned long long>(sizes[i]) * counts[i];
     return s;
   }
   size_t values_per_point() const {
@@ -61,7 +62,8 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
   long line = 0;
   bool has_width = false;
   while (true) {
-    if (pos >= bytes.size()) throw FileError(path, "header has no DATA line (truncated or not PCD)");
+    if (pos >= bytes.size())
+      throw FileError(path, "header has no DATA line (truncated or not PCD)");
     size_t end = bytes.find('\n', pos);
     if (end == std::string::npos) end = bytes.size();
     const std::string text = bytes.substr(pos, end - pos);
@@ -90,7 +92,8 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
     } else if (key == "COUNT") {
       for (const std::string& v : values) {
         unsigned long long c;
-        if (!ParseCount(v, &c) || c == 0 || c > 4096) throw bad("bad COUNT '" + v.substr(0, 20) + "'");
+        if (!ParseCount(v, &c) || c == 0 || c > 4096)
+          throw bad("bad COUNT '" + v.substr(0, 20) + "'");
         h.counts.push_back(static_cast<int>(c));
       }
     } else if (key == "WIDTH") {
@@ -112,13 +115,14 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
       h.viewpoint = Eigen::Vector3d(v[0], v[1], v[2]);
       h.has_viewpoint = true;
     } else if (key == "DATA") {
-      if (values.size() != 1 || (values[0] != "ascii" && values[0] != "binary" &&
-                                 values[0] != "binary_compressed"))
+      if (values.size() != 1 ||
+          (values[0] != "ascii" && values[0] != "binary" && values[0] != "binary_compressed"))
         throw bad("DATA must be ascii, binary or binary_compressed");
       h.data = values[0];
       break;
     } else {
-      throw bad(line == 1 ? "not a PCD file (unknown header line)" : "unknown header keyword '" + key.substr(0, 30) + "'");
+      throw bad(line == 1 ? "not a PCD file (unknown header line)"
+                          : "unknown header keyword '" + key.substr(0, 30) + "'");
     }
   }
   h.data_offset = pos;
@@ -128,11 +132,12 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
       h.counts.size() != h.fields.size())
     throw FileError(path, "FIELDS, SIZE, TYPE and COUNT must list the same number of entries");
   if (!has_width) throw FileError(path, "header has no WIDTH");
-  if (h.height != 0 && h.width > ~0ULL / h.height) throw FileError(path, "WIDTH x HEIGHT overflows");
+  if (h.height != 0 && h.width > ~0ULL / h.height)
+    throw FileError(path, "WIDTH x HEIGHT overflows");
   if (!h.has_points) h.points = h.width * h.height;
   if (h.points != h.width * h.height)
-    throw FileError(path, "POINTS " + std::to_string(h.points) + " is not WIDTH x HEIGHT = " +
-                              std::to_string(h.width * h.height));
+    throw FileError(path, "POINTS " + std::to_string(h.points) +
+                              " is not WIDTH x HEIGHT = " + std::to_string(h.width * h.height));
   if (h.points == 0) throw FileError(path, "no points (POINTS 0)");
   int xyz = 0;
   for (size_t i = 0; i < h.fields.size(); ++i)
@@ -159,8 +164,9 @@ void CheckAsciiData(const PcdHeader& h, const std::string& bytes, const std::str
     if (++found > h.points)
       throw LineError(path, line, "more data lines than POINTS " + std::to_string(h.points));
     if (tokens.size() != expected)
-      throw LineError(path, line, "expected " + std::to_string(expected) + " values, found " +
-                                      std::to_string(tokens.size()));
+      throw LineError(path, line,
+                      "expected " + std::to_string(expected) + " values, found " +
+                          std::to_string(tokens.size()));
     for (size_t t = 0; t < tokens.size(); ++t) {
       char* e = nullptr;
       const double v = std::strtod(tokens[t].c_str(), &e);
@@ -168,12 +174,14 @@ void CheckAsciiData(const PcdHeader& h, const std::string& bytes, const std::str
         throw LineError(path, line, "'" + tokens[t].substr(0, 40) + "' is not a number");
       if (std::isinf(v))
         for (int c : coordinate_column)
-          if (static_cast<size_t>(c) == t) throw LineError(path, line, "infinite coordinate '" + tokens[t] + "'");
+          if (static_cast<size_t>(c) == t)
+            throw LineError(path, line, "infinite coordinate '" + tokens[t] + "'");
     }
   }
   if (found < h.points)
-    throw LineError(path, lines.line() + 1, "data ends after " + std::to_string(found) + " of the " +
-                                        std::to_string(h.points) + " points the header declares");
+    throw LineError(path, lines.line() + 1,
+                    "data ends after " + std::to_string(found) + " of the " +
+                        std::to_string(h.points) + " points the header declares");
 }
 
 void CheckBinaryData(const PcdHeader& h, const std::string& bytes, const std::string& path) {
@@ -184,7 +192,8 @@ void CheckBinaryData(const PcdHeader& h, const std::string& bytes, const std::st
   if (h.data == "binary") {
     if (available < needed)
       throw FileError(path, "truncated: " + std::to_string(h.points) + " points need " +
-                                std::to_string(needed) + " bytes, the data has " + std::to_string(available));
+                                std::to_string(needed) + " bytes, the data has " +
+                                std::to_string(available));
     if (available > needed)
       throw FileError(path, std::to_string(available - needed) +
                                 " bytes after the declared points (wrong POINTS?)");
@@ -207,8 +216,10 @@ void CheckBinaryData(const PcdHeader& h, const std::string& bytes, const std::st
 PointCloud ReadPcdFile(const std::string& path, CloudFileInfo* info) {
   const std::string bytes = ReadTextFile(path);
   const PcdHeader header = ParseHeader(bytes, path);
-  if (header.data == "ascii") CheckAsciiData(header, bytes, path);
-  else CheckBinaryData(header, bytes, path);
+  if (header.data == "ascii")
+    CheckAsciiData(header, bytes, path);
+  else
+    CheckBinaryData(header, bytes, path);
 
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   pcl::PCLPointCloud2 blob;
@@ -225,8 +236,8 @@ PointCloud ReadPcdFile(const std::string& path, CloudFileInfo* info) {
   out.format = "pcd " + header.data;
   PointCloud cloud = FromPclCloud(blob, path, MissingPointPolicy::kDrop, &out);
   if (out.records != header.points)
-    throw FileError(path, "PCL read " + std::to_string(out.records) + " points, the header declares " +
-                              std::to_string(header.points));
+    throw FileError(path, "PCL read " + std::to_string(out.records) +
+                              " points, the header declares " + std::to_string(header.points));
   if (header.has_viewpoint) out.viewpoint = header.viewpoint;
   return cloud;
 }

@@ -22,29 +22,43 @@ double Load(const std::uint8_t* p) {
 // One numeric value of any PCL field type (the PCD and PLY readers keep the file's types).
 double FieldValue(const std::uint8_t* p, std::uint8_t datatype) {
   switch (datatype) {
-    case pcl::PCLPointField::INT8: return Load<std::int8_t>(p);
-    case pcl::PCLPointField::UINT8: return Load<std::uint8_t>(p);
-    case pcl::PCLPointField::INT16: return Load<std::int16_t>(p);
-    case pcl::PCLPointField::UINT16: return Load<std::uint16_t>(p);
-    case pcl::PCLPointField::INT32: return Load<std::int32_t>(p);
-    case pcl::PCLPointField::UINT32: return Load<std::uint32_t>(p);
-    case pcl::PCLPointField::FLOAT32: return Load<float>(p);
-    case pcl::PCLPointField::FLOAT64: return Load<double>(p);
-    default: return std::nan("");
+    case pcl::PCLPointField::INT8:
+      return Load<std::int8_t>(p);
+    case pcl::PCLPointField::UINT8:
+      return Load<std::uint8_t>(p);
+    case pcl::PCLPointField::INT16:
+      return Load<std::int16_t>(p);
+    case pcl::PCLPointField::UINT16:
+      return Load<std::uint16_t>(p);
+    case pcl::PCLPointField::INT32:
+      return Load<std::int32_t>(p);
+    case pcl::PCLPointField::UINT32:
+      return Load<std::uint32_t>(p);
+    case pcl::PCLPointField::FLOAT32:
+      return Load<float>(p);
+    case pcl::PCLPointField::FLOAT64:
+      return Load<double>(p);
+    default:
+      return std::nan("");
   }
 }
 
 std::size_t FieldSize(std::uint8_t datatype) {
   switch (datatype) {
     case pcl::PCLPointField::INT8:
-    case pcl::PCLPointField::UINT8: return 1;
+    case pcl::PCLPointField::UINT8:
+      return 1;
     case pcl::PCLPointField::INT16:
-    case pcl::PCLPointField::UINT16: return 2;
+    case pcl::PCLPointField::UINT16:
+      return 2;
     case pcl::PCLPointField::INT32:
     case pcl::PCLPointField::UINT32:
-    case pcl::PCLPointField::FLOAT32: return 4;
-    case pcl::PCLPointField::FLOAT64: return 8;
-    default: return 0;
+    case pcl::PCLPointField::FLOAT32:
+      return 4;
+    case pcl::PCLPointField::FLOAT64:
+      return 8;
+    default:
+      return 0;
   }
 }
 
@@ -59,7 +73,8 @@ const pcl::PCLPointField* FindField(const pcl::PCLPointCloud2& blob, const std::
 PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path,
                         MissingPointPolicy missing, CloudFileInfo* info) {
   const std::size_t records = static_cast<std::size_t>(blob.width) * blob.height;
-  const pcl::PCLPointField* xyz[3] = {FindField(blob, "x"), FindField(blob, "y"), FindField(blob, "z")};
+  const pcl::PCLPointField* xyz[3] = {FindField(blob, "x"), FindField(blob, "y"),
+                                      FindField(blob, "z")};
   const pcl::PCLPointField* nxyz[3] = {FindField(blob, "normal_x"), FindField(blob, "normal_y"),
                                        FindField(blob, "normal_z")};
   for (const pcl::PCLPointField* f : xyz)
@@ -67,7 +82,8 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
   const bool has_normals = nxyz[0] && nxyz[1] && nxyz[2];
   // The readers have already checked the sizes against the header; this guards the offsets.
   for (const pcl::PCLPointField& f : blob.fields) {
-    if (FieldSize(f.datatype) == 0) throw FileError(path, "field '" + f.name + "' has an unknown type");
+    if (FieldSize(f.datatype) == 0)
+      throw FileError(path, "field '" + f.name + "' has an unknown type");
     if (f.offset + FieldSize(f.datatype) * std::max<std::uint32_t>(f.count, 1) > blob.point_step)
       throw FileError(path, "field '" + f.name + "' lies outside its point record");
   }
@@ -83,8 +99,9 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
     out.grid_height = blob.height;
   }
   for (const pcl::PCLPointField& f : blob.fields) {
-    const bool used = f.name == "x" || f.name == "y" || f.name == "z" ||
-                      (has_normals && (f.name == "normal_x" || f.name == "normal_y" || f.name == "normal_z"));
+    const bool used =
+        f.name == "x" || f.name == "y" || f.name == "z" ||
+        (has_normals && (f.name == "normal_x" || f.name == "normal_y" || f.name == "normal_z"));
     if (!used) out.ignored_properties.push_back(f.name);
   }
 

@@ -54,7 +54,8 @@ struct PlyHeader {
 int TypeSize(const std::string& t) {
   if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
   if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32")
+    return 4;
   if (t == "double" || t == "float64") return 8;
   return 0;
 }
@@ -67,7 +68,8 @@ PlyHeader ParseHeader(const std::string& bytes, const std::string& path) {
   size_t pos = 0;
   long line = 0;
   while (true) {
-    if (pos >= bytes.size()) throw FileError(path, "header has no 'end_header' line (truncated or not PLY)");
+    if (pos >= bytes.size())
+      throw FileError(path, "header has no 'end_header' line (truncated or not PLY)");
     size_t end = bytes.find('\n', pos);
     if (end == std::string::npos) end = bytes.size();
     std::string text = bytes.substr(pos, end - pos);
@@ -83,7 +85,8 @@ PlyHeader ParseHeader(const std::string& bytes, const std::string& path) {
     if (keyword == "format") {
       std::string version;
       in >> h.format >> version;
-      if (h.format != "ascii" && h.format != "binary_little_endian" && h.format != "binary_big_endian")
+      if (h.format != "ascii" && h.format != "binary_little_endian" &&
+          h.format != "binary_big_endian")
         throw LineError(path, line, "unknown PLY format '" + h.format + "'");
     } else if (keyword == "element") {
       PlyElement e;
@@ -146,13 +149,15 @@ const PlyElement& VertexElement(const PlyHeader& h, const std::string& path) {
       }
     }
     if (!colours.empty()) {
-      const std::vector<std::string> rgb = {"red", "green", "blue"}, rgba = {"red", "green", "blue", "alpha"};
+      const std::vector<std::string> rgb = {"red", "green", "blue"},
+                                     rgba = {"red", "green", "blue", "alpha"};
       bool in_a_row = colours == rgb || colours == rgba;
       for (size_t k = 0; in_a_row && k < colours.size(); ++k)
         in_a_row = e.properties[first + k].name == colours[k];
       if (!in_a_row)
-        throw FileError(path, "uchar colour properties must be 'red green blue [alpha]' in a row "
-                              "(PCL's PLY reader misreads other layouts)");
+        throw FileError(path,
+                        "uchar colour properties must be 'red green blue [alpha]' in a row "
+                        "(PCL's PLY reader misreads other layouts)");
     }
     if (e.count == 0) throw FileError(path, "no points (the header declares 0 vertices)");
     return e;
@@ -173,9 +178,10 @@ void CheckAsciiData(const PlyHeader& h, const std::string& bytes, const std::str
     const bool vertex = e.name == "vertex";
     for (unsigned long long r = 0; r < e.count; ++r) {
       if (!lines.Next())
-        throw LineError(path, lines.line() + 1, "data ends after " + std::to_string(r) + " of the " +
-                                            std::to_string(e.count) + " '" + e.name +
-                                            "' records the header declares");
+        throw LineError(path, lines.line() + 1,
+                        "data ends after " + std::to_string(r) + " of the " +
+                            std::to_string(e.count) + " '" + e.name +
+                            "' records the header declares");
       const std::vector<std::string>& tokens = lines.tokens();
       size_t t = 0;
       double v;
@@ -189,17 +195,20 @@ void CheckAsciiData(const PlyHeader& h, const std::string& bytes, const std::str
         }
         for (size_t k = 0; k < n; ++k, ++t) {
           if (t >= tokens.size())
-            throw LineError(path, lines.line(), "too few values for the properties of '" + e.name + "'");
+            throw LineError(path, lines.line(),
+                            "too few values for the properties of '" + e.name + "'");
           if (!IsNumber(tokens[t], &v))
-            throw LineError(path, lines.line(), "'" + tokens[t].substr(0, 40) + "' is not a number");
+            throw LineError(path, lines.line(),
+                            "'" + tokens[t].substr(0, 40) + "' is not a number");
           if (vertex && !p.count_size && (p.name == "x" || p.name == "y" || p.name == "z") &&
               !std::isfinite(v))
             throw LineError(path, lines.line(), "NaN or infinite coordinate '" + tokens[t] + "'");
         }
       }
       if (t != tokens.size())
-        throw LineError(path, lines.line(), "expected " + std::to_string(t) + " values for '" + e.name +
-                                        "', found " + std::to_string(tokens.size()));
+        throw LineError(path, lines.line(),
+                        "expected " + std::to_string(t) + " values for '" + e.name + "', found " +
+                            std::to_string(tokens.size()));
     }
   }
   if (lines.Next())
@@ -240,8 +249,10 @@ PointCloud ReadPlyFile(const std::string& path, CloudFileInfo* info) {
   const std::string bytes = ReadTextFile(path);
   const PlyHeader header = ParseHeader(bytes, path);
   const PlyElement& vertex = VertexElement(header, path);
-  if (header.format == "ascii") CheckAsciiData(header, bytes, path);
-  else CheckBinarySize(header, bytes, path, vertex);
+  if (header.format == "ascii")
+    CheckAsciiData(header, bytes, path);
+  else
+    CheckBinarySize(header, bytes, path, vertex);
 
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   pcl::PCLPointCloud2 blob;

@@ -33,21 +33,22 @@ void AppendLittleEndian(std::string* out, double value, bool swap) {
 // Written by hand rather than through pcl::PLYWriter: that needs a PCLPointCloud2 copy and
 // writes to the final path directly, while the output must be composed in memory and renamed
 // into place (no partial file); the format itself is a dozen header lines and packed records.
-void WritePlyFile(const PointCloud& cloud, const std::string& path, const std::vector<double>& residuals,
-                  const PlyWriteOptions& options) {
+void WritePlyFile(const PointCloud& cloud, const std::string& path,
+                  const std::vector<double>& residuals, const PlyWriteOptions& options) {
   if (!residuals.empty() && residuals.size() != cloud.size())
-    throw std::invalid_argument("WritePlyFile: " + std::to_string(residuals.size()) + " residuals for " +
-                                std::to_string(cloud.size()) + " points");
+    throw std::invalid_argument("WritePlyFile: " + std::to_string(residuals.size()) +
+                                " residuals for " + std::to_string(cloud.size()) + " points");
   if (cloud.has_normals() && cloud.normals.size() != cloud.size())
     throw std::invalid_argument("WritePlyFile: normals do not match the points");
   if (!options.labels.empty() && options.labels.size() != cloud.size())
-    throw std::invalid_argument("WritePlyFile: " + std::to_string(options.labels.size()) + " labels for " +
-                                std::to_string(cloud.size()) + " points");
+    throw std::invalid_argument("WritePlyFile: " + std::to_string(options.labels.size()) +
+                                " labels for " + std::to_string(cloud.size()) + " points");
   const bool has_labels = !options.labels.empty();
   const char* type = options.single ? "float" : "double";
   std::string out = "ply\nformat ";
   out += options.ascii ? "ascii" : "binary_little_endian";
-  out += " 1.0\ncomment written by implicitfit\nelement vertex " + std::to_string(cloud.size()) + "\n";
+  out +=
+      " 1.0\ncomment written by implicitfit\nelement vertex " + std::to_string(cloud.size()) + "\n";
   std::vector<std::string> names = {"x", "y", "z"};
   if (cloud.has_normals()) names.insert(names.end(), {"nx", "ny", "nz"});
   for (const std::string& name : names) out += std::string("property ") + type + " " + name + "\n";

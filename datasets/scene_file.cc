@@ -45,7 +45,8 @@ double Finite(const json& v, const std::string& where) {
   return v.get<double>();
 }
 
-void OnlyKnownKeys(const json& object, const std::set<std::string>& known, const std::string& where) {
+void OnlyKnownKeys(const json& object, const std::set<std::string>& known,
+                   const std::string& where) {
   for (auto it = object.begin(); it != object.end(); ++it)
     if (!known.count(it.key())) throw ModelFormatError(where + "." + it.key() + ": unknown field");
 }
@@ -68,7 +69,8 @@ Scene SceneFromJson(const json& d) {
     const std::string where = "primitives[" + std::to_string(i) + "]";
     const json& p = list[i];
     if (!p.is_object()) throw ModelFormatError(where + ": must be an object");
-    OnlyKnownKeys(p, {"name", "model", "points", "rms_distance", "standard_deviations", "normal_side"},
+    OnlyKnownKeys(p,
+                  {"name", "model", "points", "rms_distance", "standard_deviations", "normal_side"},
                   where);
     ScenePrimitive prim;
     const json& name = Field(p, "name", where);
@@ -79,14 +81,16 @@ Scene SceneFromJson(const json& d) {
     prim.rms_distance = Finite(Field(p, "rms_distance", where), where + ".rms_distance");
     if (p.contains("standard_deviations")) {
       const json& sd = p.at("standard_deviations");
-      if (!sd.is_object()) throw ModelFormatError(where + ".standard_deviations: must be an object");
+      if (!sd.is_object())
+        throw ModelFormatError(where + ".standard_deviations: must be an object");
       for (auto it = sd.begin(); it != sd.end(); ++it)
         prim.standard_deviations[it.key()] =
             Finite(it.value(), where + ".standard_deviations." + it.key());
     }
     const json& side = Field(p, "normal_side", where);
     if (side != "outward" && side != "inward" && side != "unknown")
-      throw ModelFormatError(where + ".normal_side: must be \"outward\", \"inward\" or \"unknown\"");
+      throw ModelFormatError(where +
+                             ".normal_side: must be \"outward\", \"inward\" or \"unknown\"");
     prim.normal_side = side.get<std::string>();
     scene.primitives.push_back(std::move(prim));
   }
@@ -103,7 +107,8 @@ Scene ReadSceneFile(const std::string& path) {
   } catch (const json::parse_error& e) {
     std::string what = e.what();
     const size_t at = what.find("] ");
-    throw FileError(path, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+    throw FileError(path,
+                    "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
   }
   try {
     return SceneFromJson(document);
@@ -124,9 +129,9 @@ void WriteSceneFile(const Scene& scene, const std::string& path) {
                     {"standard_deviations", sd},
                     {"normal_side", p.normal_side}});
   }
-  const json document = {{"format", "implicitfit-scene"}, {"version", 1},
-                         {"cloud", scene.cloud},          {"points", scene.points},
-                         {"primitives", list},            {"unassigned", scene.unassigned}};
+  const json document = {
+      {"format", "implicitfit-scene"}, {"version", 1},       {"cloud", scene.cloud},
+      {"points", scene.points},        {"primitives", list}, {"unassigned", scene.unassigned}};
   WriteFileAtomically(path, document.dump(2) + "\n");
 }
 
@@ -143,8 +148,9 @@ std::vector<int> ReadLabelsFile(const std::string& path, int num_primitives, lon
     if (!(fields >> value) || (fields >> rest))
       throw LineError(path, number, "expected one integer label, found '" + line + "'");
     if (value < -1 || value >= num_primitives)
-      throw LineError(path, number, "label " + std::to_string(value) + " is outside -1.." +
-                                        std::to_string(num_primitives - 1));
+      throw LineError(path, number,
+                      "label " + std::to_string(value) + " is outside -1.." +
+                          std::to_string(num_primitives - 1));
     labels.push_back(static_cast<int>(value));
   }
   if (expected_count >= 0 && static_cast<long>(labels.size()) != expected_count)

@@ -20,26 +20,27 @@
 namespace implicitfit {
 
 struct ScenePrimitive {
-  std::string name;                                  // "p0", "p1", ...
-  Model model;                                       // a one-node (or small-tree) model
-  int points = 0;                                    // points assigned to it
-  double rms_distance = 0.0;                         // RMS of their distances
+  std::string name;                                   // "p0", "p1", ...
+  Model model;                                        // a one-node (or small-tree) model
+  int points = 0;                                     // points assigned to it
+  double rms_distance = 0.0;                          // RMS of their distances
   std::map<std::string, double> standard_deviations;  // parameter name -> sd (may be empty)
-  std::string normal_side = "unknown";               // "outward", "inward" or "unknown"
+  std::string normal_side = "unknown";                // "outward", "inward" or "unknown"
 };
 
 struct Scene {
-  std::string cloud;                                 // the cloud the scene was detected in
-  int points = 0;                                    // points in that cloud
+  std::string cloud;  // the cloud the scene was detected in
+  int points = 0;     // points in that cloud
   std::vector<ScenePrimitive> primitives;
-  int unassigned = 0;                                // points of no primitive
+  int unassigned = 0;  // points of no primitive
 };
 
 Scene ReadSceneFile(const std::string& path);
 void WriteSceneFile(const Scene& scene, const std::string& path);
 
 // Labels: one integer per line, -1 .. primitives-1; `expected_count` < 0 skips the count check.
-std::vector<int> ReadLabelsFile(const std::string& path, int num_primitives, long expected_count = -1);
+std::vector<int> ReadLabelsFile(const std::string& path, int num_primitives,
+                                long expected_count = -1);
 void WriteLabelsFile(const std::vector<int>& labels, const std::string& path);
 
 }  // namespace implicitfit

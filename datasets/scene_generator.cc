@@ -22,7 +22,8 @@ Vector3d RandomUnit(std::mt19937& rng) {
 Vector3d RandomNear(const Vector3d& around, double max_angle, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   const double cos_min = std::cos(max_angle);
-  const double c = cos_min + (1 - cos_min) * u(rng), s = std::sqrt(1 - c * c), phi = 2 * M_PI * u(rng);
+  const double c = cos_min + (1 - cos_min) * u(rng), s = std::sqrt(1 - c * c),
+               phi = 2 * M_PI * u(rng);
   const Vector3d a = around.unitOrthogonal(), b = around.cross(a);
   return c * around + s * (std::cos(phi) * a + std::sin(phi) * b);
 }
@@ -38,7 +39,8 @@ void Append(GeneratedScene* scene, const Model& model, NodeType kind, const Samp
   }
 }
 
-SampledCloud SampleIn(const Model& m, int count, unsigned seed, const Vector3d& lo, const Vector3d& hi) {
+SampledCloud SampleIn(const Model& m, int count, unsigned seed, const Vector3d& lo,
+                      const Vector3d& hi) {
   SampleOptions o;
   o.count = count;
   o.seed = seed;
@@ -48,13 +50,14 @@ SampledCloud SampleIn(const Model& m, int count, unsigned seed, const Vector3d& 
   return SampleModel(m, o);
 }
 
-void AddNoiseAndOutliers(GeneratedScene* scene, const GeneratedSceneOptions& options, const Vector3d& lo,
-                         const Vector3d& hi, std::mt19937& rng) {
+void AddNoiseAndOutliers(GeneratedScene* scene, const GeneratedSceneOptions& options,
+                         const Vector3d& lo, const Vector3d& hi, std::mt19937& rng) {
   std::normal_distribution<double> g(0.0, 1.0);
   for (size_t i = 0; i < scene->cloud.size(); ++i)
     scene->cloud.points[i] += options.noise * g(rng) * scene->cloud.normals[i];
   const int inliers = static_cast<int>(scene->cloud.size());
-  const int outliers = static_cast<int>(std::round(options.outliers / (1 - options.outliers) * inliers));
+  const int outliers =
+      static_cast<int>(std::round(options.outliers / (1 - options.outliers) * inliers));
   std::uniform_real_distribution<double> u(0, 1);
   for (int k = 0; k < outliers; ++k) {
     Vector3d p;
@@ -77,7 +80,8 @@ GeneratedScene GenerateScene(const GeneratedSceneOptions& options) {
     Model ground;
     ground.AddPrimitive(NodeType::kPlane, {0, 0, 1, 0});
     Append(&scene, ground, NodeType::kPlane,
-           SampleIn(ground, options.ground_points, ++sub_seed, Vector3d(0, 0, -0.1), Vector3d(4, 3, 0.1)));
+           SampleIn(ground, options.ground_points, ++sub_seed, Vector3d(0, 0, -0.1),
+                    Vector3d(4, 3, 0.1)));
   }
   std::vector<int> cells = {0, 1, 2, 3, 4, 5};
   std::shuffle(cells.begin(), cells.end(), rng);
@@ -99,7 +103,8 @@ GeneratedScene GenerateScene(const GeneratedSceneOptions& options) {
       }
       case 1: {  // cylinder
         const Vector3d a = RandomUnit(rng);
-        m.AddPrimitive(kind = NodeType::kCylinder, {c[0], c[1], c[2], a[0], a[1], a[2], range(0.18, 0.3)});
+        m.AddPrimitive(kind = NodeType::kCylinder,
+                       {c[0], c[1], c[2], a[0], a[1], a[2], range(0.18, 0.3)});
         break;
       }
       case 2: {  // cone, apex up, opening down

@@ -26,15 +26,15 @@ struct GeneratedSceneOptions {
   int ground_points = 4000;
   int object_points = 1000;
   double noise = 0.005;
-  double outliers = 0.1;      // fraction of the output points
-  bool planes_only = false;   // every object a tilted plane patch (a plane-only scene)
+  double outliers = 0.1;     // fraction of the output points
+  bool planes_only = false;  // every object a tilted plane patch (a plane-only scene)
 };
 
 struct GeneratedScene {
   PointCloud cloud;
-  std::vector<int> labels;          // per point: index into models, -1 outlier
-  std::vector<Model> models;        // one primitive each
-  std::vector<NodeType> kinds;      // their kinds
+  std::vector<int> labels;      // per point: index into models, -1 outlier
+  std::vector<Model> models;    // one primitive each
+  std::vector<NodeType> kinds;  // their kinds
 };
 
 GeneratedScene GenerateScene(const GeneratedSceneOptions& options);

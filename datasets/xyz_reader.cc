@@ -38,7 +38,10 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudF
     if (p == line_end || *p == '#') continue;
     int count = 0;
     while (p < line_end) {
-      if (count == 7) throw LineError(name, line_number, std::string(labelled ? "expected 4 numbers" : "expected 3 or 6 numbers") + ", found more than 6");
+      if (count == 7)
+        throw LineError(name, line_number,
+                        std::string(labelled ? "expected 4 numbers" : "expected 3 or 6 numbers") +
+                            ", found more than 6");
       // strtod needs a terminated token: copy it (tokens are short).
       const char* token_end = p;
       while (token_end < line_end && !IsSeparator(*token_end)) ++token_end;
@@ -55,7 +58,8 @@ PointCloud ParseXyzText(const std::string& text, const std::string& name, CloudF
       while (p < line_end && IsSeparator(*p)) ++p;
     }
     if (labelled && count != 4)
-      throw LineError(name, line_number, "expected 4 numbers (x y z label), found " + std::to_string(count));
+      throw LineError(name, line_number,
+                      "expected 4 numbers (x y z label), found " + std::to_string(count));
     if (!labelled && count != 3 && count != 6)
       throw LineError(name, line_number,
                       "expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(count));

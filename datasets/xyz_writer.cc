@@ -15,8 +15,8 @@ std::string FormatXyz(const PointCloud& cloud) {
     int n;
     if (cloud.has_normals()) {
       const Eigen::Vector3d& q = cloud.normals[i];
-      n = std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(), p.z(), q.x(),
-                        q.y(), q.z());
+      n = std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(),
+                        p.z(), q.x(), q.y(), q.z());
     } else {
       n = std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", p.x(), p.y(), p.z());
     }
@@ -25,6 +25,8 @@ std::string FormatXyz(const PointCloud& cloud) {
   return out;
 }
 
-void WriteXyzFile(const PointCloud& cloud, const std::string& path) { WriteFileAtomically(path, FormatXyz(cloud)); }
+void WriteXyzFile(const PointCloud& cloud, const std::string& path) {
+  WriteFileAtomically(path, FormatXyz(cloud));
+}
 
 }  // namespace implicitfit

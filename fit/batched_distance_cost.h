@@ -31,10 +31,12 @@ class BatchedDistanceCost final : public PointChunkCost {
   static constexpr int kP = Evaluator::kNumParameters;
 
   // One residual per point of `indices` (see PointChunkCost).
-  BatchedDistanceCost(const double* xyz, std::vector<int> indices, const std::vector<int>& block_sizes)
+  BatchedDistanceCost(const double* xyz, std::vector<int> indices,
+                      const std::vector<int>& block_sizes)
       : PointChunkCost(xyz, std::move(indices), block_sizes, -1) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
     if constexpr (kAnalytic)
       return EvaluateAnalytic(parameters, residuals, jacobians);
     else
@@ -42,7 +44,8 @@ class BatchedDistanceCost final : public PointChunkCost {
   }
 
  private:
-  bool EvaluateAnalytic(double const* const* parameters, double* residuals, double** jacobians) const {
+  bool EvaluateAnalytic(double const* const* parameters, double* residuals,
+                        double** jacobians) const {
     const std::vector<int32_t>& sizes = parameter_block_sizes();
     double p[kP];
     Gather(parameters, p);

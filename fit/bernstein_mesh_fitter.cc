@@ -61,7 +61,8 @@ struct MeshPointResidual {
 // one face); constant Jacobian.
 class FaceRowsCost final : public ceres::CostFunction {
  public:
-  FaceRowsCost(Eigen::MatrixXd a_u, Eigen::MatrixXd a_t) : a_u_(std::move(a_u)), a_t_(std::move(a_t)) {
+  FaceRowsCost(Eigen::MatrixXd a_u, Eigen::MatrixXd a_t)
+      : a_u_(std::move(a_u)), a_t_(std::move(a_t)) {
     set_num_residuals(static_cast<int>(a_u_.rows()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(a_u_.cols()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(a_t_.cols()));
@@ -69,7 +70,8 @@ class FaceRowsCost final : public ceres::CostFunction {
   bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
     const long n = a_u_.cols();
     Eigen::Map<Eigen::VectorXd> r(residuals, a_u_.rows());
-    r = a_u_ * Eigen::Map<const Eigen::VectorXd>(p[0], n) + a_t_ * Eigen::Map<const Eigen::VectorXd>(p[1], n);
+    r = a_u_ * Eigen::Map<const Eigen::VectorXd>(p[0], n) +
+        a_t_ * Eigen::Map<const Eigen::VectorXd>(p[1], n);
     if (jacobians) {
       using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
       if (jacobians[0]) Eigen::Map<RowMajor>(jacobians[0], a_u_.rows(), n) = a_u_;
@@ -134,7 +136,8 @@ std::map<std::pair<long long, long long>, std::pair<Eigen::MatrixXd, Eigen::Matr
   for (const auto& [face, list] : by_face) {
     Eigen::MatrixXd au = Eigen::MatrixXd::Zero(list.size(), n), at = au;
     for (size_t i = 0; i < list.size(); ++i)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows.C, list[i]); it; ++it) {
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows.C, list[i]); it;
+           ++it) {
         const long long tet = it.col() / n;
         const int j = static_cast<int>(it.col() % n);
         (tet == face.first ? au : at)(static_cast<long>(i), j) += weight * it.value();
@@ -170,9 +173,10 @@ std::vector<bool> EmptyFaceRows(const ContinuityRows& c2, const PointData& data)
 
 // Step 1 (see the header). Returns b (not yet projected).
 std::vector<double> LinearInitialisation(const BernsteinGrid& grid, int k, int continuity,
-                                         const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                         double d, const MeshFitOptions& options,
-                                         const ContinuityRows& c2, const std::vector<bool>& c2_keep) {
+                                         const std::vector<Vec>& points,
+                                         const std::vector<Vec>& normals, double d,
+                                         const MeshFitOptions& options, const ContinuityRows& c2,
+                                         const std::vector<bool>& c2_keep) {
   const long long n = NumBernsteinControlPoints(k);
   const std::vector<long long> domain = DomainPointIndices(grid, k);
   const long long nd = NumDomainPoints(grid, k);
@@ -200,7 +204,8 @@ std::vector<double> LinearInitialisation(const BernsteinGrid& grid, int k, int c
   SparseMatrix P(static_cast<long>(domain.size()), nd);
   {
     std::vector<Eigen::Triplet<double>> tp;
-    for (size_t i = 0; i < domain.size(); ++i) tp.emplace_back(static_cast<long>(i), domain[i], 1.0);
+    for (size_t i = 0; i < domain.size(); ++i)
+      tp.emplace_back(static_cast<long>(i), domain[i], 1.0);
     P.setFromTriplets(tp.begin(), tp.end());
   }
   SparseMatrix H = SparseMatrix(A.transpose()) * A;
@@ -234,35 +239,45 @@ std::vector<double> LinearInitialisation(const BernsteinGrid& grid, int k, int c
   return std::vector<double>(b.data(), b.data() + b.size());
 }
 
-double MeshRms(const BernsteinGrid& grid, int k, const std::vector<double>& b, const std::vector<Vec>& points,
-               const std::vector<Vec>& normals, double* mean_angle) {
+double MeshRms(const BernsteinGrid& grid, int k, const std::vector<double>& b,
+               const std::vector<Vec>& points, const std::vector<Vec>& normals,
+               double* mean_angle) {
   const long long n = NumBernsteinControlPoints(k);
   double ss = 0, angles = 0;
   for (size_t i = 0; i < points.size(); ++i) {
     double tau[4];
     const long long t = grid.Locate(points[i].data(), tau);
     Vec g;
-    const double f = BernsteinPatch::Derivatives(k, grid.TetrahedronOf(t), b.data() + t * n, points[i].data(), &g);
+    const double f = BernsteinPatch::Derivatives(k, grid.TetrahedronOf(t), b.data() + t * n,
+                                                 points[i].data(), &g);
     ss += f * f / std::max(g.squaredNorm(), 1e-300);
     if (!normals.empty())
       angles += std::acos(std::min(1.0, std::abs(g.normalized().dot(normals[i])))) * 180 / M_PI;
   }
-  if (mean_angle) *mean_angle = normals.empty() ? -1.0 : angles / std::max<size_t>(1, points.size());
+  if (mean_angle)
+    *mean_angle = normals.empty() ? -1.0 : angles / std::max<size_t>(1, points.size());
   return std::sqrt(ss / std::max<size_t>(1, points.size()));
 }
 
 template <int N>
-ceres::CostFunction* PointCost(int k, const Tetrahedron& tet, const Vec& x, const Vec& normal, double w) {
-  auto* f = new MeshPointResidual<N>{k, tet, {x[0], x[1], x[2]}, {normal[0], normal[1], normal[2]}, w};
+ceres::CostFunction* PointCost(int k, const Tetrahedron& tet, const Vec& x, const Vec& normal,
+                               double w) {
+  auto* f =
+      new MeshPointResidual<N>{k, tet, {x[0], x[1], x[2]}, {normal[0], normal[1], normal[2]}, w};
   return new ceres::AutoDiffCostFunction<MeshPointResidual<N>, 4, N>(f);
 }
 
-ceres::CostFunction* AnyPointCost(int k, const Tetrahedron& tet, const Vec& x, const Vec& normal, double w) {
+ceres::CostFunction* AnyPointCost(int k, const Tetrahedron& tet, const Vec& x, const Vec& normal,
+                                  double w) {
   switch (k) {
-    case 2: return PointCost<10>(k, tet, x, normal, w);
-    case 3: return PointCost<20>(k, tet, x, normal, w);
-    case 4: return PointCost<35>(k, tet, x, normal, w);
-    default: return PointCost<56>(k, tet, x, normal, w);
+    case 2:
+      return PointCost<10>(k, tet, x, normal, w);
+    case 3:
+      return PointCost<20>(k, tet, x, normal, w);
+    case 4:
+      return PointCost<35>(k, tet, x, normal, w);
+    default:
+      return PointCost<56>(k, tet, x, normal, w);
   }
 }
 
@@ -296,8 +311,8 @@ int Refine(const BernsteinGrid& grid, int k, int continuity, const std::vector<V
       BasisValues(k, tau, basis.data());
       std::vector<double> row(basis);
       for (double& v : row) v *= kScaleWeight;
-      problem.AddResidualBlock(new LinearRowCost(std::move(row), kScaleWeight * sign * offset), loss.get(),
-                               base + t * n);
+      problem.AddResidualBlock(new LinearRowCost(std::move(row), kScaleWeight * sign * offset),
+                               loss.get(), base + t * n);
     }
   const ContinuityRows rows = BernsteinContinuityRows(grid, k, 0, continuity);
   for (auto& [face, m] : FaceBlocks(rows, n, options.continuity_weight, nullptr))
@@ -308,7 +323,8 @@ int Refine(const BernsteinGrid& grid, int k, int continuity, const std::vector<V
                              base + face.second * n);
   if (guard_margins)
     for (long long t = 0; t < grid.NumTetrahedra(); ++t)
-      problem.AddResidualBlock(new MeshConvexityGuard(k, n, (*guard_margins)[t]), nullptr, base + t * n);
+      problem.AddResidualBlock(new MeshConvexityGuard(k, n, (*guard_margins)[t]), nullptr,
+                               base + t * n);
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = options.max_iterations;
@@ -329,7 +345,8 @@ bool ConvexStart(const BernsteinGrid& grid, int k, const std::vector<Vec>& point
     *message = "the convex degree-2 start failed: " + quadric_fit.message;
     return false;
   }
-  const CartesianQuadric q = BernsteinToQuadric(quadric_fit.control_points.data(), quadric_fit.tetrahedron);
+  const CartesianQuadric q =
+      BernsteinToQuadric(quadric_fit.control_points.data(), quadric_fit.tetrahedron);
   b->clear();
   for (long long t = 0; t < grid.NumTetrahedra(); ++t) {
     const std::vector<double> bt = QuadricToBernstein(q, grid.TetrahedronOf(t), k);
@@ -348,7 +365,8 @@ bool MeshFitOptions::IsValid(std::string* error) const {
   if (degree < 2 || degree > 5) return fail("--degree must be 2..5 for a patch mesh");
   if (continuity != 0 && continuity != 1) return fail("--continuity must be 0 or 1");
   if (convex && continuity != 1)
-    return fail("--convex needs --continuity 1 (convex patches joined C0 can meet at a concave kink)");
+    return fail(
+        "--convex needs --continuity 1 (convex patches joined C0 can meet at a concave kink)");
   if (cells < 0 || cells > 200) return fail("--cells must be in 1..200");
   if (!(cell >= 0.0) || !std::isfinite(cell)) return fail("--cell must be a positive length");
   return true;
@@ -395,7 +413,8 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const long long n = NumBernsteinControlPoints(k);
   result.degree = k;
   result.continuity = options.continuity;
-  result.grid = options.has_grid ? options.grid : MeshGridForCloud(points, options.cells, options.cell);
+  result.grid =
+      options.has_grid ? options.grid : MeshGridForCloud(points, options.cells, options.cell);
   const BernsteinGrid& grid = result.grid;
   result.tetrahedra = grid.NumTetrahedra();
   const double diagonal = (grid.BoxMax() - grid.BoxMin()).norm();
@@ -405,7 +424,8 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const ContinuityRows c2 = BernsteinContinuityRows(grid, k, 2, 2);
   const std::vector<bool> c2_keep = EmptyFaceRows(c2, data);
 
-  std::vector<double> b = LinearInitialisation(grid, k, options.continuity, points, normals, d, options, c2, c2_keep);
+  std::vector<double> b =
+      LinearInitialisation(grid, k, options.continuity, points, normals, d, options, c2, c2_keep);
   ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   result.initial_rms = MeshRms(grid, k, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * result.initial_rms, 1e-9 * diagonal);
@@ -419,14 +439,15 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
       const ConvexityCertificate c = CertifyConvexity(k, b.data() + t * n);
       margins[t] = std::min(1e-4 * scale, 0.5 * c.min_eigenvalue);
     }
-    result.iterations = Refine(grid, k, 1, points, normals, data, c2, c2_keep, options, loss_scale, d, &margins, &b);
+    result.iterations = Refine(grid, k, 1, points, normals, data, c2, c2_keep, options, loss_scale,
+                               d, &margins, &b);
     result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   } else {
     // The refinement must not end worse than the (projected) initialisation it started from
     // (it can on real scans with inconsistent normals); keep the better of the two.
     const std::vector<double> initial = b;
-    result.iterations = Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep, options,
-                               loss_scale, d, nullptr, &b);
+    result.iterations = Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep,
+                               options, loss_scale, d, nullptr, &b);
     result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
     if (!(MeshRms(grid, k, b, points, normals, nullptr) <= result.initial_rms)) {
       b = initial;
@@ -442,12 +463,15 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
     result.certified_tetrahedra += c.convex;
     result.min_eigenvalue = std::min(result.min_eigenvalue, c.min_eigenvalue);
   }
-  result.certified_convex = options.continuity == 1 && result.certified_tetrahedra == grid.NumTetrahedra() &&
+  result.certified_convex = options.continuity == 1 &&
+                            result.certified_tetrahedra == grid.NumTetrahedra() &&
                             result.continuity_defect <= kMaxContinuityDefect;
   if (options.convex && !result.certified_convex) {
     result.message = "the convexity certificate failed after the projection: " +
-                     std::to_string(result.certified_tetrahedra) + " of " + std::to_string(grid.NumTetrahedra()) +
-                     " tetrahedra certified, continuity defect " + std::to_string(result.continuity_defect);
+                     std::to_string(result.certified_tetrahedra) + " of " +
+                     std::to_string(grid.NumTetrahedra()) +
+                     " tetrahedra certified, continuity defect " +
+                     std::to_string(result.continuity_defect);
   } else {
     result.success = true;
     result.message = "converged";

@@ -37,10 +37,10 @@
 namespace implicitfit {
 
 struct MeshFitOptions {
-  int degree = 3;                  // 2..5 (C1 wants >= 3: C1 quadratics are nearly global)
-  int cells = 0;                   // cubes along the longest box edge (used when cell == 0)
-  double cell = 0.0;               // cube edge h; 0: from cells (default 4 cubes)
-  bool has_grid = false;           // use `grid` as given instead of the cloud's box
+  int degree = 3;         // 2..5 (C1 wants >= 3: C1 quadratics are nearly global)
+  int cells = 0;          // cubes along the longest box edge (used when cell == 0)
+  double cell = 0.0;      // cube edge h; 0: from cells (default 4 cubes)
+  bool has_grid = false;  // use `grid` as given instead of the cloud's box
   BernsteinGrid grid;
   int continuity = 1;              // 0 or 1
   bool convex = false;             // enforce and certify convexity on the whole box (C1 only)
@@ -64,10 +64,10 @@ struct MeshFitResult {
   double continuity_defect = 0.0;      // max |C b| / max |b| after the projection
   bool certified_convex = false;       // every tetrahedron certified (and, C1, defect tiny)
   int certified_tetrahedra = 0;
-  double min_eigenvalue = 0.0;         // smallest A^mu eigenvalue over all tetrahedra
+  double min_eigenvalue = 0.0;  // smallest A^mu eigenvalue over all tetrahedra
   long long tetrahedra = 0;
   int iterations = 0;
-  bool kept_initialisation = false;    // the refinement ended worse: the initialisation is kept
+  bool kept_initialisation = false;  // the refinement ended worse: the initialisation is kept
   double seconds = 0.0;
   Model ToModel() const;
 };

@@ -43,10 +43,12 @@ class CompressedDistanceCost final : public PointChunkCost {
   static_assert(PrimitiveDistance<Evaluator>::kAvailable, "needs closed-form derivatives");
 
   // kP + 1 residuals for the points of `indices` (see fit/point_chunk_cost.h).
-  CompressedDistanceCost(const double* xyz, std::vector<int> indices, const std::vector<int>& block_sizes)
+  CompressedDistanceCost(const double* xyz, std::vector<int> indices,
+                         const std::vector<int>& block_sizes)
       : PointChunkCost(xyz, std::move(indices), block_sizes, kP + 1) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
     using Matrix = Eigen::Matrix<double, kP, kP>;
     using Vector = Eigen::Matrix<double, kP, 1>;
     const std::vector<int32_t>& sizes = parameter_block_sizes();
@@ -70,7 +72,8 @@ class CompressedDistanceCost final : public PointChunkCost {
       const double r = f(xyz_ + 3 * i, dp.data(), nullptr);
       c += r * r;
       g += r * dp;
-      for (int j = 0; j < kP; ++j)  // lower triangle; Eigen's rankUpdate is an out-of-line call per point
+      for (int j = 0; j < kP;
+           ++j)  // lower triangle; Eigen's rankUpdate is an out-of-line call per point
         for (int k = 0; k <= j; ++k) a(j, k) += dp[j] * dp[k];
     }
     a = a.template selfadjointView<Eigen::Lower>();
@@ -89,11 +92,13 @@ class CompressedDistanceCost final : public PointChunkCost {
     }
     residuals[kP] = std::sqrt(std::max(0.0, c - explained));
     // J' rows k < kP: sqrt(lambda_k) (V^T D)_k; row kP: 0.
-    const Matrix jp = lambda.cwiseSqrt().asDiagonal() * eig.eigenvectors().transpose() * d.asDiagonal();
+    const Matrix jp =
+        lambda.cwiseSqrt().asDiagonal() * eig.eigenvectors().transpose() * d.asDiagonal();
     for (size_t b = 0; b < sizes.size(); ++b) {
       if (!jacobians[b]) continue;
       for (int k = 0; k <= kP; ++k)
-        for (int j = 0; j < sizes[b]; ++j) jacobians[b][k * sizes[b] + j] = k < kP ? jp(k, offsets_[b] + j) : 0.0;
+        for (int j = 0; j < sizes[b]; ++j)
+          jacobians[b][k * sizes[b] + j] = k < kP ? jp(k, offsets_[b] + j) : 0.0;
     }
     return true;
   }

@@ -17,7 +17,8 @@ double ProjectOntoContinuitySpace(const BernsteinGrid& grid, int k, int continui
   using SpqrMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
   const SpqrMatrix Ct = SpqrMatrix(rows.C.transpose());
   Eigen::SPQR<SpqrMatrix> qr(Ct);
-  if (qr.info() != Eigen::Success) throw std::runtime_error("continuity projection: SuiteSparseQR failed");
+  if (qr.info() != Eigen::Success)
+    throw std::runtime_error("continuity projection: SuiteSparseQR failed");
   Eigen::Map<Eigen::VectorXd> bv(b->data(), static_cast<Eigen::Index>(b->size()));
   for (int pass = 0; pass < 2; ++pass) {
     const Eigen::VectorXd y = qr.solve(bv);

@@ -53,7 +53,8 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
       if (!hits_outside) t = wider;
     }
     bool duplicate = false;
-    for (const CsgTerm& u : terms) duplicate = duplicate || (u.inside == t.inside && u.outside == t.outside);
+    for (const CsgTerm& u : terms)
+      duplicate = duplicate || (u.inside == t.inside && u.outside == t.outside);
     if (!duplicate) terms.push_back(t);
   }
   // 2. Drop terms whose inside cells the others cover (last first: earlier terms are kept).
@@ -62,7 +63,8 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
     for (std::uint64_t cell : inside_cells) {
       if (!Covers(terms[i], cell)) continue;
       bool other = false;
-      for (int j = 0; j < static_cast<int>(terms.size()); ++j) other = other || (j != i && Covers(terms[j], cell));
+      for (int j = 0; j < static_cast<int>(terms.size()); ++j)
+        other = other || (j != i && Covers(terms[j], cell));
       needed = needed || !other;
     }
     if (!needed) terms.erase(terms.begin() + i);
@@ -71,7 +73,8 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
   return result;
 }
 
-std::string CsgExpressionText(const std::vector<CsgTerm>& terms, const std::vector<std::string>& names) {
+std::string CsgExpressionText(const std::vector<CsgTerm>& terms,
+                              const std::vector<std::string>& names) {
   std::string text;
   for (size_t t = 0; t < terms.size(); ++t) {
     if (t) text += " | ";

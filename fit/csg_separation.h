@@ -25,8 +25,8 @@
 namespace implicitfit {
 
 struct CsgSample {
-  std::uint64_t signs = 0;   // bit k: inside primitive k
-  bool inside = false;       // the sample is inside the solid
+  std::uint64_t signs = 0;  // bit k: inside primitive k
+  bool inside = false;      // the sample is inside the solid
 };
 
 // One term of the union: intersection of the primitives in `inside` minus those in
@@ -50,6 +50,7 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
                             const CsgSeparationOptions& options = {});
 
 // "(p0 & p1 & !p2) | (p3)" with the given primitive names.
-std::string CsgExpressionText(const std::vector<CsgTerm>& terms, const std::vector<std::string>& names);
+std::string CsgExpressionText(const std::vector<CsgTerm>& terms,
+                              const std::vector<std::string>& names);
 
 }  // namespace implicitfit

@@ -15,9 +15,12 @@ enum class Estimator { kRobust, kLeastSquares, kMinimumZone };
 
 inline const char* EstimatorName(Estimator e) {
   switch (e) {
-    case Estimator::kLeastSquares: return "least-squares";
-    case Estimator::kMinimumZone: return "minimum-zone";
-    default: return "robust";
+    case Estimator::kLeastSquares:
+      return "least-squares";
+    case Estimator::kMinimumZone:
+      return "minimum-zone";
+    default:
+      return "robust";
   }
 }
 

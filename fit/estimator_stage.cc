@@ -4,8 +4,8 @@
 
 namespace implicitfit {
 
-void FinishWithEstimator(const std::vector<Eigen::Vector3d>& points, const PrimitiveFitOptions& options,
-                         PrimitiveFitResult* result) {
+void FinishWithEstimator(const std::vector<Eigen::Vector3d>& points,
+                         const PrimitiveFitOptions& options, PrimitiveFitResult* result) {
   result->estimator = options.estimator;
   if (!result->success || result->parameters.empty()) return;
   const auto start = std::chrono::steady_clock::now();
@@ -44,9 +44,11 @@ void FinishWithEstimator(const std::vector<Eigen::Vector3d>& points, const Primi
   result->inliers.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) result->inliers[i] = static_cast<int>(i);
   result->rms = result->form.rms;
-  result->max_abs = std::max(std::abs(result->form.min_distance), std::abs(result->form.max_distance));
+  result->max_abs =
+      std::max(std::abs(result->form.min_distance), std::abs(result->form.max_distance));
   result->standard_deviations.clear();  // the robust fit's, not valid for this estimator
-  result->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result->seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace implicitfit

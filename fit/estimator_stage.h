@@ -13,7 +13,7 @@
 
 namespace implicitfit {
 
-void FinishWithEstimator(const std::vector<Eigen::Vector3d>& points, const PrimitiveFitOptions& options,
-                         PrimitiveFitResult* result);
+void FinishWithEstimator(const std::vector<Eigen::Vector3d>& points,
+                         const PrimitiveFitOptions& options, PrimitiveFitResult* result);
 
 }  // namespace implicitfit

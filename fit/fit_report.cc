@@ -84,7 +84,8 @@ nlohmann::json PatchFitReport(const PatchFitResult& r, const PatchFitOptions& op
                            {"seconds", r.seconds},
                            {"normals", normals}};
   if (options.convex) report["unconstrained_rms_distance"] = r.unconstrained_rms;
-  report["termination"] = FitTerminationName(r.termination);  // CONVERGENCE, NO_CONVERGENCE, FAILURE
+  report["termination"] =
+      FitTerminationName(r.termination);  // CONVERGENCE, NO_CONVERGENCE, FAILURE
   return report;
 }
 

@@ -17,14 +17,14 @@ namespace {
 constexpr int kChunk = 256;  // points per residual block
 
 template <typename E>
-void AddCosts(const std::vector<Eigen::Vector3d>& x, const std::vector<int>& sizes, const std::vector<double*>& blocks,
-              ceres::Problem* problem) {
+void AddCosts(const std::vector<Eigen::Vector3d>& x, const std::vector<int>& sizes,
+              const std::vector<double*>& blocks, ceres::Problem* problem) {
   const int n = static_cast<int>(x.size());
   for (int s = 0; s < n; s += kChunk) {
     std::vector<int> idx;
     for (int i = s; i < std::min(n, s + kChunk); ++i) idx.push_back(i);
-    problem->AddResidualBlock(new BatchedDistanceCost<E, true>(x[0].data(), std::move(idx), sizes), nullptr,
-                              blocks);
+    problem->AddResidualBlock(new BatchedDistanceCost<E, true>(x[0].data(), std::move(idx), sizes),
+                              nullptr, blocks);
   }
 }
 
@@ -53,7 +53,8 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
                                    const std::map<std::string, std::vector<double>>& fixed) {
   LeastSquaresResult result;
   const int k = FreeParameterCount(kind);
-  if (static_cast<int>(points.size()) <= k || static_cast<int>(start.size()) != NumParametersOf(kind)) {
+  if (static_cast<int>(points.size()) <= k ||
+      static_cast<int>(start.size()) != NumParametersOf(kind)) {
     result.message = "least squares needs more points than free parameters and a start";
     return result;
   }
@@ -84,12 +85,24 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
   for (auto& b : blocks) ptrs.push_back(b.data());
   ceres::Problem problem;
   switch (kind) {
-    case NodeType::kPlane: AddCosts<PlaneEvaluator>(x, sizes, ptrs, &problem); break;
-    case NodeType::kSphere: AddCosts<SphereEvaluator>(x, sizes, ptrs, &problem); break;
-    case NodeType::kCylinder: AddCosts<CylinderEvaluator>(x, sizes, ptrs, &problem); break;
-    case NodeType::kCone: AddCosts<ConeEvaluator>(x, sizes, ptrs, &problem); break;
-    case NodeType::kTorus: AddCosts<TorusEvaluator>(x, sizes, ptrs, &problem); break;
-    default: result.message = "least squares: unsupported kind"; return result;
+    case NodeType::kPlane:
+      AddCosts<PlaneEvaluator>(x, sizes, ptrs, &problem);
+      break;
+    case NodeType::kSphere:
+      AddCosts<SphereEvaluator>(x, sizes, ptrs, &problem);
+      break;
+    case NodeType::kCylinder:
+      AddCosts<CylinderEvaluator>(x, sizes, ptrs, &problem);
+      break;
+    case NodeType::kCone:
+      AddCosts<ConeEvaluator>(x, sizes, ptrs, &problem);
+      break;
+    case NodeType::kTorus:
+      AddCosts<TorusEvaluator>(x, sizes, ptrs, &problem);
+      break;
+    default:
+      result.message = "least squares: unsupported kind";
+      return result;
   }
   bool any_fixed = false;
   for (size_t b = 0; b < fields.size(); ++b) {
@@ -99,7 +112,8 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
       any_fixed = true;
       continue;
     }
-    if (name == "axis" || name == "normal") problem.SetManifold(ptrs[b], new ceres::SphereManifold<3>());
+    if (name == "axis" || name == "normal")
+      problem.SetManifold(ptrs[b], new ceres::SphereManifold<3>());
     if (name == "half_angle") {
       problem.SetParameterLowerBound(ptrs[b], 0, 1e-9);
       problem.SetParameterUpperBound(ptrs[b], 0, M_PI / 2 - 1e-9);
@@ -166,7 +180,8 @@ LeastSquaresResult LeastSquaresFit(NodeType kind, const std::vector<Eigen::Vecto
   result.figures = ComputeFormFigures(kind, params, points);
   result.success = true;
   char text[96];
-  std::snprintf(text, sizeof text, "least squares converged (last Gauss-Newton step %.3g)", result.final_step);
+  std::snprintf(text, sizeof text, "least squares converged (last Gauss-Newton step %.3g)",
+                result.final_step);
   result.message = text;
   return result;
 }

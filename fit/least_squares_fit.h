@@ -7,8 +7,8 @@
 // equations, so nothing squares the conditioning), axes on SphereManifold<3>, tolerances at
 // the double-precision floor; then Gauss-Newton steps in local coordinates
 // (fit/primitive_tangent.h, column-pivoted QR of the Jacobian), taken while they shrink, until
-// one is below 1e-14 of the part size. `final_step` reports the last step's length: the distance to the
-// exact least-squares solution, to first order. Computed in a frame centred on the points.
+// one is below 1e-14 of the part size. `final_step` reports the last step's length: the distance to
+// the exact least-squares solution, to first order. Computed in a frame centred on the points.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,9 +21,9 @@
 namespace implicitfit {
 
 struct FormFigures {
-  double rms = 0.0;                            // sqrt(mean d_i^2) over every point
+  double rms = 0.0;                               // sqrt(mean d_i^2) over every point
   double min_distance = 0.0, max_distance = 0.0;  // extreme signed distances
-  double form_error = 0.0;                     // max - min: width of the zone the fit leaves
+  double form_error = 0.0;                        // max - min: width of the zone the fit leaves
 };
 
 FormFigures ComputeFormFigures(NodeType kind, const std::vector<double>& params,
@@ -32,10 +32,10 @@ FormFigures ComputeFormFigures(NodeType kind, const std::vector<double>& params,
 struct LeastSquaresResult {
   bool success = false;
   std::string message;
-  std::vector<double> parameters;   // flat layout of the evaluator, input frame
+  std::vector<double> parameters;  // flat layout of the evaluator, input frame
   FormFigures figures;
-  int iterations = 0;               // Ceres iterations plus Gauss-Newton polishing steps
-  double final_step = 0.0;          // length of the last Gauss-Newton step (parameter units)
+  int iterations = 0;       // Ceres iterations plus Gauss-Newton polishing steps
+  double final_step = 0.0;  // length of the last Gauss-Newton step (parameter units)
 };
 
 // start: a fit close enough to converge (the robust fit); fixed: field name -> kept constant.

@@ -21,17 +21,22 @@ void Normalise(NodeType kind, double* p) {
 // Keeps radii positive and the cone angle inside (0, pi/2).
 bool Admissible(NodeType kind, const double* p) {
   switch (kind) {
-    case NodeType::kSphere: return p[3] > 0;
-    case NodeType::kCylinder: return p[6] > 0;
-    case NodeType::kCone: return p[6] > 1e-4 && p[6] < M_PI / 2 - 1e-4;
-    case NodeType::kTorus: return p[6] > 0 && p[7] > 0;
-    default: return true;
+    case NodeType::kSphere:
+      return p[3] > 0;
+    case NodeType::kCylinder:
+      return p[6] > 0;
+    case NodeType::kCone:
+      return p[6] > 1e-4 && p[6] < M_PI / 2 - 1e-4;
+    case NodeType::kTorus:
+      return p[6] > 0 && p[7] > 0;
+    default:
+      return true;
   }
 }
 
 template <typename E>
-double Refit(NodeType kind, const std::vector<Eigen::Vector3d>& points, const std::vector<int>& indices,
-             std::vector<double>* params, int iterations) {
+double Refit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
+             const std::vector<int>& indices, std::vector<double>* params, int iterations) {
   constexpr int P = PrimitiveDistance<E>::kNumParameters;
   using Mat = Eigen::Matrix<double, P, P>;
   using Vec = Eigen::Matrix<double, P, 1>;
@@ -91,15 +96,22 @@ double Refit(NodeType kind, const std::vector<Eigen::Vector3d>& points, const st
 }  // namespace
 
 double RefitPrimitiveLocally(NodeType kind, const std::vector<Eigen::Vector3d>& points,
-                             const std::vector<int>& indices, std::vector<double>* params, int iterations) {
+                             const std::vector<int>& indices, std::vector<double>* params,
+                             int iterations) {
   if (indices.size() < 8) return -1.0;
   switch (kind) {
-    case NodeType::kPlane: return Refit<PlaneEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kSphere: return Refit<SphereEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kCylinder: return Refit<CylinderEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kCone: return Refit<ConeEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kTorus: return Refit<TorusEvaluator>(kind, points, indices, params, iterations);
-    default: return -1.0;
+    case NodeType::kPlane:
+      return Refit<PlaneEvaluator>(kind, points, indices, params, iterations);
+    case NodeType::kSphere:
+      return Refit<SphereEvaluator>(kind, points, indices, params, iterations);
+    case NodeType::kCylinder:
+      return Refit<CylinderEvaluator>(kind, points, indices, params, iterations);
+    case NodeType::kCone:
+      return Refit<ConeEvaluator>(kind, points, indices, params, iterations);
+    case NodeType::kTorus:
+      return Refit<TorusEvaluator>(kind, points, indices, params, iterations);
+    default:
+      return -1.0;
   }
 }
 

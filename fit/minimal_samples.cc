@@ -33,7 +33,8 @@ bool CylinderFromSample(const Vec3 p[2], const Vec3 n[2], std::vector<double>* p
   axis.normalize();
   // Project into the plane orthogonal to the axis and intersect the two normal lines there.
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - axis * axis.transpose();
-  const Vec3 q0 = P * p[0], q1 = P * p[1], m0 = (P * n[0]).normalized(), m1 = (P * n[1]).normalized();
+  const Vec3 q0 = P * p[0], q1 = P * p[1], m0 = (P * n[0]).normalized(),
+             m1 = (P * n[1]).normalized();
   const Vec3 w = q0 - q1;
   const double b = m0.dot(m1), d = m0.dot(w), e = m1.dot(w);
   const double den = 1.0 - b * b;
@@ -72,7 +73,8 @@ bool ConeFromSample(const Vec3 p[3], const Vec3 n[3], std::vector<double>* param
   return true;
 }
 
-bool TorusFromSample(const std::vector<Vec3>& p, const std::vector<Vec3>& n, std::vector<double>* params) {
+bool TorusFromSample(const std::vector<Vec3>& p, const std::vector<Vec3>& n,
+                     std::vector<double>* params) {
   const int k = static_cast<int>(p.size());
   if (k < 5) return false;
   Eigen::MatrixXd M(k, 6);

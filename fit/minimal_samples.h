@@ -27,6 +27,7 @@ bool PlaneFromSample(const Vec3& p, const Vec3& n, std::vector<double>* params);
 bool SphereFromSample(const Vec3 p[2], const Vec3 n[2], std::vector<double>* params);
 bool CylinderFromSample(const Vec3 p[2], const Vec3 n[2], std::vector<double>* params);
 bool ConeFromSample(const Vec3 p[3], const Vec3 n[3], std::vector<double>* params);
-bool TorusFromSample(const std::vector<Vec3>& p, const std::vector<Vec3>& n, std::vector<double>* params);
+bool TorusFromSample(const std::vector<Vec3>& p, const std::vector<Vec3>& n,
+                     std::vector<double>* params);
 
 }  // namespace implicitfit

@@ -11,12 +11,13 @@ namespace implicitfit {
 namespace {
 
 struct Linearisation {
-  Eigen::MatrixXd basis;   // P x k
-  Eigen::VectorXd d;       // signed distances of every point
-  Eigen::MatrixXd g;       // N x k local gradients
+  Eigen::MatrixXd basis;  // P x k
+  Eigen::VectorXd d;      // signed distances of every point
+  Eigen::MatrixXd g;      // N x k local gradients
 };
 
-Linearisation Linearise(NodeType kind, const std::vector<double>& p, const std::vector<Eigen::Vector3d>& x) {
+Linearisation Linearise(NodeType kind, const std::vector<double>& p,
+                        const std::vector<Eigen::Vector3d>& x) {
   const int n = static_cast<int>(x.size()), P = static_cast<int>(p.size());
   Linearisation l;
   l.basis = TangentBasis(kind, p);
@@ -31,7 +32,8 @@ Linearisation Linearise(NodeType kind, const std::vector<double>& p, const std::
 }
 
 // A_S: columns [sigma_i g_i; 1] of the reference.
-Eigen::MatrixXd ReferenceMatrix(const Linearisation& l, const std::vector<int>& S, const std::vector<int>& sigma) {
+Eigen::MatrixXd ReferenceMatrix(const Linearisation& l, const std::vector<int>& S,
+                                const std::vector<int>& sigma) {
   const int k = static_cast<int>(l.g.cols()), m = static_cast<int>(S.size());
   Eigen::MatrixXd A(k + 1, m);
   for (int c = 0; c < m; ++c) {
@@ -54,8 +56,9 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   MinimumZoneResult result;
   if (!(kind == NodeType::kPlane || kind == NodeType::kSphere || kind == NodeType::kCylinder ||
         kind == NodeType::kCone)) {
-    result.message = std::string("minimum zone is available for plane, sphere, cylinder and cone, not ") +
-                     NodeTypeName(kind);
+    result.message =
+        std::string("minimum zone is available for plane, sphere, cylinder and cone, not ") +
+        NodeTypeName(kind);
     return result;
   }
   const int k = FreeParameterCount(kind), m = k + 1, n = static_cast<int>(points.size());
@@ -82,7 +85,8 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   Linearisation lin = Linearise(kind, theta, x);
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(lin.d[a]) > std::abs(lin.d[b]); });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return std::abs(lin.d[a]) > std::abs(lin.d[b]); });
   std::vector<int> S, sigma(m);
   {
     auto smallest_singular = [](const Eigen::MatrixXd& M, Eigen::VectorXd* null) {
@@ -110,7 +114,8 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
       }
     }
     if (static_cast<int>(S.size()) < m) {
-      result.message = "minimum zone: the points do not determine the " + std::string(NodeTypeName(kind));
+      result.message =
+          "minimum zone: the points do not determine the " + std::string(NodeTypeName(kind));
       return result;
     }
   }
@@ -124,7 +129,8 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
       for (int c = 0; c < m; ++c) G.col(c) = lin.g.row(S[c]).transpose();
       Eigen::JacobiSVD<Eigen::MatrixXd> svd(G, Eigen::ComputeFullV);
       const Eigen::VectorXd c = svd.matrixV().col(m - 1);
-      for (int i = 0; i < m; ++i) sigma[i] = c[i] > 0 ? 1 : c[i] < 0 ? -1 : (lin.d[S[i]] >= 0 ? 1 : -1);
+      for (int i = 0; i < m; ++i)
+        sigma[i] = c[i] > 0 ? 1 : c[i] < 0 ? -1 : (lin.d[S[i]] >= 0 ? 1 : -1);
     }
     // 2. Newton on d_i(theta) = sigma_i h.
     h = 0;
@@ -205,8 +211,8 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   }
   double worst = 0;
   for (int i = 0; i < n; ++i) worst = std::max(worst, std::abs(lin.d[i]));
-  result.optimality_verified = positive && worst <= h * (1 + 1e-9) + eps && result.outer_contacts > 0 &&
-                               result.inner_contacts > 0;
+  result.optimality_verified = positive && worst <= h * (1 + 1e-9) + eps &&
+                               result.outer_contacts > 0 && result.inner_contacts > 0;
   if (kind == NodeType::kCylinder) {  // axis point closest to the centroid
     Eigen::Map<Eigen::Vector3d> q(theta.data()), u(theta.data() + 3);
     u.normalize();
@@ -217,8 +223,9 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   result.zone_width = 2 * h;
   result.figures = ComputeFormFigures(kind, theta, points);
   result.success = result.optimality_verified;
-  result.message = result.success ? "minimum zone: optimality conditions hold"
-                                  : "minimum zone: the optimality conditions do not hold at the last reference";
+  result.message =
+      result.success ? "minimum zone: optimality conditions hold"
+                     : "minimum zone: the optimality conditions do not hold at the last reference";
   return result;
 }
 

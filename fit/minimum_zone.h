@@ -43,8 +43,9 @@ struct MinimumZoneResult {
   std::vector<int> sides;           // +1: on the outer face (d = +t), -1: on the inner face
   std::vector<double> multipliers;  // lambda_i of the contacts
   int outer_contacts = 0, inner_contacts = 0;
-  bool optimality_verified = false; // every lambda_i >= -1e-9, every |d_i| <= t (1 + 1e-9), both faces touched
-  int exchanges = 0;                // reference changes
+  bool optimality_verified =
+      false;          // every lambda_i >= -1e-9, every |d_i| <= t (1 + 1e-9), both faces touched
+  int exchanges = 0;  // reference changes
 };
 
 // Plane, sphere, cylinder and cone (a torus has no guarantee of the Haar condition here).

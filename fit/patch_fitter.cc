@@ -42,7 +42,8 @@ struct PatchPointResidual {
 };
 
 // Degree 2, convex by construction: z = [L00 L10 L11 L20 L21 L22, b1001 b0101 b0011 b0002].
-// A_ij = b(e_i+e_j) + b(2e_4) - b(e_i+e_4) - b(e_j+e_4)  =>  b(e_i+e_j) = A_ij - b0002 + b_i4 + b_j4.
+// A_ij = b(e_i+e_j) + b(2e_4) - b(e_i+e_4) - b(e_j+e_4)  =>  b(e_i+e_j) = A_ij - b0002 + b_i4 +
+// b_j4.
 template <typename T>
 void ConvexQuadricControlPoints(const T* z, double margin, T* b) {
   const T L[3][3] = {{z[0], T(0.0), T(0.0)}, {z[1], z[2], T(0.0)}, {z[3], z[4], z[5]}};
@@ -98,9 +99,11 @@ struct ConvexityGuard final : public ceres::CostFunction {
 };
 
 template <int N>
-PatchPointResidual<N> MakePointResidual(int k, const Tetrahedron& tet, const std::vector<Vec>& points,
+PatchPointResidual<N> MakePointResidual(int k, const Tetrahedron& tet,
+                                        const std::vector<Vec>& points,
                                         const std::vector<Vec>& normals, size_t i, double w) {
-  PatchPointResidual<N> r{k, &tet, {points[i].x(), points[i].y(), points[i].z()}, {0, 0, 0}, !normals.empty(), w};
+  PatchPointResidual<N> r{
+      k, &tet, {points[i].x(), points[i].y(), points[i].z()}, {0, 0, 0}, !normals.empty(), w};
   if (!normals.empty())
     for (int c = 0; c < 3; ++c) r.n[c] = normals[i][c];
   return r;
@@ -108,13 +111,14 @@ PatchPointResidual<N> MakePointResidual(int k, const Tetrahedron& tet, const std
 
 // One block per point (1 residual, or 4 with the normal term) with a Cauchy loss, on `block`.
 template <typename Functor, int N, typename Make>
-void AddPointBlocks(ceres::Problem* problem, size_t count, bool with_normals, const Make& make, double loss_scale,
-                    double* block) {
+void AddPointBlocks(ceres::Problem* problem, size_t count, bool with_normals, const Make& make,
+                    double loss_scale, double* block) {
   for (size_t i = 0; i < count; ++i) {
     Functor* f = new Functor(make(i));
-    ceres::CostFunction* cost = with_normals
-                                    ? static_cast<ceres::CostFunction*>(new ceres::AutoDiffCostFunction<Functor, 4, N>(f))
-                                    : new ceres::AutoDiffCostFunction<Functor, 1, N>(f);
+    ceres::CostFunction* cost =
+        with_normals
+            ? static_cast<ceres::CostFunction*>(new ceres::AutoDiffCostFunction<Functor, 4, N>(f))
+            : new ceres::AutoDiffCostFunction<Functor, 1, N>(f);
     problem->AddResidualBlock(cost, new ceres::CauchyLoss(loss_scale), block);
   }
 }
@@ -140,7 +144,8 @@ std::vector<double> BasisAt(int k, const Tetrahedron& tet, const Vec& x) {
   return basis;
 }
 
-std::vector<double> LinearInitialisation(int k, const Tetrahedron& tet, const std::vector<Vec>& points,
+std::vector<double> LinearInitialisation(int k, const Tetrahedron& tet,
+                                         const std::vector<Vec>& points,
                                          const std::vector<Vec>& normals, double h) {
   const int n = static_cast<int>(NumBernsteinControlPoints(k));
   const bool with_normals = !normals.empty();
@@ -163,8 +168,9 @@ std::vector<double> LinearInitialisation(int k, const Tetrahedron& tet, const st
   return std::vector<double>(b.data(), b.data() + n);
 }
 
-double Rms(int k, const Tetrahedron& tet, const std::vector<double>& b, const std::vector<Vec>& points,
-           const std::vector<Vec>& normals, double* mean_angle, double* mean_cosine = nullptr) {
+double Rms(int k, const Tetrahedron& tet, const std::vector<double>& b,
+           const std::vector<Vec>& points, const std::vector<Vec>& normals, double* mean_angle,
+           double* mean_cosine = nullptr) {
   double ss = 0, angles = 0, cosines = 0;
   for (size_t i = 0; i < points.size(); ++i) {
     Eigen::Vector3d g;
@@ -190,26 +196,33 @@ struct SolveOutcome {
 SolveOutcome DescribeSolve(const ceres::Solver::Summary& summary) {
   switch (summary.termination_type) {
     case ceres::CONVERGENCE:
-    case ceres::USER_SUCCESS: return {FitTermination::kConverged, "converged"};
+    case ceres::USER_SUCCESS:
+      return {FitTermination::kConverged, "converged"};
     case ceres::NO_CONVERGENCE:
-      return {FitTermination::kNoConvergence,
-              "no convergence within " + std::to_string(std::max<int>(0, static_cast<int>(summary.iterations.size()) - 1)) +
-                  " iterations (the iteration limit): " + summary.message};
+      return {
+          FitTermination::kNoConvergence,
+          "no convergence within " +
+              std::to_string(std::max<int>(0, static_cast<int>(summary.iterations.size()) - 1)) +
+              " iterations (the iteration limit): " + summary.message};
     case ceres::FAILURE:
-    case ceres::USER_FAILURE: break;
+    case ceres::USER_FAILURE:
+      break;
   }
   return {FitTermination::kFailure, summary.message};
 }
 
 template <int N>
-std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b, const std::vector<Vec>& points,
-                           const std::vector<Vec>& normals, const PatchFitOptions& options, double loss_scale,
-                           bool guard, SolveOutcome* outcome) {
+std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b,
+                           const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                           const PatchFitOptions& options, double loss_scale, bool guard,
+                           SolveOutcome* outcome) {
   ceres::Problem problem;
   AddPointBlocks<PatchPointResidual<N>, N>(
       &problem, points.size(), !normals.empty(),
-      [&](size_t i) { return MakePointResidual<N>(k, tet, points, normals, i, options.normal_weight); }, loss_scale,
-      b.data());
+      [&](size_t i) {
+        return MakePointResidual<N>(k, tet, points, normals, i, options.normal_weight);
+      },
+      loss_scale, b.data());
   if (guard) problem.AddResidualBlock(new ConvexityGuard(k, N, 1e-6), nullptr, b.data());
   if (!options.constraints.empty()) {
     Eigen::MatrixXd basis;
@@ -224,17 +237,22 @@ std::vector<double> Refine(int k, const Tetrahedron& tet, std::vector<double> b,
 
 std::vector<double> RefineAnyDegree(int k, const Tetrahedron& tet, const std::vector<double>& b,
                                     const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                    const PatchFitOptions& options, double loss_scale, bool guard, SolveOutcome* outcome) {
+                                    const PatchFitOptions& options, double loss_scale, bool guard,
+                                    SolveOutcome* outcome) {
   switch (k) {
-    case 2: return Refine<10>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
-    case 3: return Refine<20>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
-    default: return Refine<35>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
+    case 2:
+      return Refine<10>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
+    case 3:
+      return Refine<20>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
+    default:
+      return Refine<35>(k, tet, b, points, normals, options, loss_scale, guard, outcome);
   }
 }
 
 // Degree-2 convex fit by the exact parameterisation, started from b (any quadric patch).
 std::vector<double> ConvexQuadricFit(const Tetrahedron& tet, const std::vector<double>& b,
-                                     const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                                     const std::vector<Vec>& points,
+                                     const std::vector<Vec>& normals,
                                      const PatchFitOptions& options, double loss_scale,
                                      SolveOutcome* outcome) {
   double scale = 0;
@@ -246,17 +264,20 @@ std::vector<double> ConvexQuadricFit(const Tetrahedron& tet, const std::vector<d
   A << a[0], a[3], a[4], a[3], a[1], a[5], a[4], a[5], a[2];
   // Nearest positive definite start: clamp the eigenvalues at a few margins.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(A);
-  const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(10 * margin + 1e-3 * eig.eigenvalues().cwiseAbs().maxCoeff());
-  const Eigen::Matrix3d start = eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose() -
-                                margin * Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d lambda =
+      eig.eigenvalues().cwiseMax(10 * margin + 1e-3 * eig.eigenvalues().cwiseAbs().maxCoeff());
+  const Eigen::Matrix3d start =
+      eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose() -
+      margin * Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d L = start.llt().matrixL();
-  std::vector<double> z = {L(0, 0), L(1, 0), L(1, 1), L(2, 0), L(2, 1), L(2, 2), b[3], b[6], b[8], b[9]};
+  std::vector<double> z = {L(0, 0), L(1, 0), L(1, 1), L(2, 0), L(2, 1),
+                           L(2, 2), b[3],    b[6],    b[8],    b[9]};
   ceres::Problem problem;
   AddPointBlocks<ConvexQuadricPointResidual, 10>(
       &problem, points.size(), !normals.empty(),
       [&](size_t i) {
-        return ConvexQuadricPointResidual{MakePointResidual<10>(2, tet, points, normals, i, options.normal_weight),
-                                          margin};
+        return ConvexQuadricPointResidual{
+            MakePointResidual<10>(2, tet, points, normals, i, options.normal_weight), margin};
       },
       loss_scale, z.data());
   *outcome = DescribeSolve(SolvePatchProblem(&problem, options.max_iterations));
@@ -274,7 +295,8 @@ bool PatchFitOptions::IsValid(std::string* error) const {
   }
   if (convex && !constraints.empty()) {
     if (error)
-      *error = "--through-vertex, --vertex-normal and --through-edge cannot be combined with --convex";
+      *error =
+          "--through-vertex, --vertex-normal and --through-edge cannot be combined with --convex";
     return false;
   }
   if (!constraints.empty()) {
@@ -305,7 +327,8 @@ Tetrahedron EnclosingTetrahedron(const std::vector<Vec>& points) {
   for (const Vec& p : points) R = std::max(R, (p - c).norm());
   if (!(R > 0)) R = 1.0;
   const double s = 3.0 * 1.1 * R / std::sqrt(3.0);
-  return Tetrahedron(c + s * Vec(1, 1, 1), c + s * Vec(1, -1, -1), c + s * Vec(-1, 1, -1), c + s * Vec(-1, -1, 1));
+  return Tetrahedron(c + s * Vec(1, 1, 1), c + s * Vec(1, -1, -1), c + s * Vec(-1, 1, -1),
+                     c + s * Vec(-1, -1, 1));
 }
 
 PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vector<Vec>& normals,
@@ -319,7 +342,8 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
   }
   const int k = options.degree;
   if (points.size() < static_cast<size_t>(NumBernsteinControlPoints(k))) {
-    result.message = "too few points for a degree-" + std::to_string(k) + " patch: " + std::to_string(points.size());
+    result.message = "too few points for a degree-" + std::to_string(k) +
+                     " patch: " + std::to_string(points.size());
     return result;
   }
   result.degree = k;
@@ -349,7 +373,8 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
   const double init_rms = Rms(k, tet, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * init_rms, 1e-9 * R);
   SolveOutcome outcome;  // of the last solve
-  std::vector<double> free_fit = RefineAnyDegree(k, tet, b, points, normals, options, loss_scale, false, &outcome);
+  std::vector<double> free_fit =
+      RefineAnyDegree(k, tet, b, points, normals, options, loss_scale, false, &outcome);
   double angle;
   const double free_rms = Rms(k, tet, free_fit, points, normals, &angle);
 
@@ -358,10 +383,13 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
     result.unconstrained_rms = free_rms;
     // Degree 2 first (exact parameterisation); degree >= 3 continues from it, elevated.
     std::vector<double> b2 = k == 2 ? free_fit : LinearInitialisation(2, tet, points, normals, h);
-    std::vector<double> convex2 = ConvexQuadricFit(tet, b2, points, normals, options, loss_scale, &outcome);
+    std::vector<double> convex2 =
+        ConvexQuadricFit(tet, b2, points, normals, options, loss_scale, &outcome);
     fitted = convex2;
     for (int d = 2; d < k; ++d) fitted = ElevateDegree(d, fitted);
-    if (k >= 3) fitted = RefineAnyDegree(k, tet, fitted, points, normals, options, loss_scale, true, &outcome);
+    if (k >= 3)
+      fitted =
+          RefineAnyDegree(k, tet, fitted, points, normals, options, loss_scale, true, &outcome);
   }
   result.control_points = fitted;
   result.rms = Rms(k, tet, fitted, points, normals, &result.mean_normal_angle_deg,

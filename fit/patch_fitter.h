@@ -3,12 +3,13 @@
 //
 // Tetrahedron: the user's, or by default the regular tetrahedron whose inscribed sphere has
 // radius 1.1 R around the centroid c, R = max |p_i - c| (so the cloud lies inside with a 10%
-// margin): vertices c + 3.3 R v_i, v_i = (+-1, +-1, +-1)/sqrt(3) with an even number of minus signs.
+// margin): vertices c + 3.3 R v_i, v_i = (+-1, +-1, +-1)/sqrt(3) with an even number of minus
+// signs.
 // 1. Linear initialisation (Eigen, least squares): f(p_i) = 0, f(p_i +- h n_i) = +-h, h = 1% of
 //    R, linear in the control points; it fixes the scale, so f = 0 is excluded.
 // 2. Ceres refinement of r_0 = f / |grad f| (first-order geometric distance) and the normal term
-//    w (grad f / |grad f| - n) (signed: grad f follows the normals' orientation), grad f analytic (de Casteljau), Cauchy loss at 3 sigma of the
-//    initial fit.
+//    w (grad f / |grad f| - n) (signed: grad f follows the normals' orientation), grad f analytic
+//    (de Casteljau), Cauchy loss at 3 sigma of the initial fit.
 // 3. --convex, every A^mu of DESIGN.md positive definite with the margin
 //    lambda_min(A^mu) >= 1e-6 max|b| (scale-invariant):
 //    degree 2: exact parameterisation A = L L^T + m I (L lower triangular, 6 numbers) plus the
@@ -28,19 +29,19 @@
 #include <string>
 #include <vector>
 
-#include "fit/patch_shape_constraints.h"
 #include "fit/fit_termination.h"
+#include "fit/patch_shape_constraints.h"
 #include "model/bernstein_patch.h"
 #include "model/model.h"
 
 namespace implicitfit {
 
 struct PatchFitOptions {
-  int degree = 2;                 // 2..4
-  bool convex = false;            // enforce and certify convexity
-  bool has_tetrahedron = false;   // use `tetrahedron` instead of the default enclosing one
+  int degree = 2;                // 2..4
+  bool convex = false;           // enforce and certify convexity
+  bool has_tetrahedron = false;  // use `tetrahedron` instead of the default enclosing one
   Tetrahedron tetrahedron;
-  double normal_weight = 0.1;     // w of the normal residuals
+  double normal_weight = 0.1;  // w of the normal residuals
   int max_iterations = 200;
   // Guo §3 shape control (fit/patch_shape_constraints.h): exact linear equalities, not
   // combined with `convex` (IsValid refuses the pair).
@@ -50,7 +51,7 @@ struct PatchFitOptions {
 
 struct PatchFitResult {
   bool success = false;
-  std::string message;                // "converged", "no convergence within ...", or why it failed
+  std::string message;  // "converged", "no convergence within ...", or why it failed
   // How the last solve ended: NO_CONVERGENCE (the iteration limit came first) is a usable,
   // successful result that is not converged; FAILURE makes success false.
   FitTermination termination = FitTermination::kFailure;
@@ -69,7 +70,8 @@ struct PatchFitResult {
 };
 
 PatchFitResult FitBernsteinPatch(const std::vector<Eigen::Vector3d>& points,
-                                 const std::vector<Eigen::Vector3d>& normals, const PatchFitOptions& options);
+                                 const std::vector<Eigen::Vector3d>& normals,
+                                 const PatchFitOptions& options);
 
 // The default tetrahedron for a cloud (see the header comment).
 Tetrahedron EnclosingTetrahedron(const std::vector<Eigen::Vector3d>& points);

@@ -8,7 +8,8 @@ namespace implicitfit {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-bool PlaneFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3d>&, std::vector<double>* params) {
+bool PlaneFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3d>&,
+                    std::vector<double>* params) {
   if (p.size() < 3) return false;
   Vector3d mean = Vector3d::Zero();
   for (const auto& x : p) mean += x;
@@ -22,7 +23,8 @@ bool PlaneFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3d>&
   return true;
 }
 
-bool SphereFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3d>& n, std::vector<double>* params) {
+bool SphereFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3d>& n,
+                     std::vector<double>* params) {
   if (p.size() < 3 || n.size() != p.size()) return false;
   Matrix3d a = Matrix3d::Zero();
   Vector3d b = Vector3d::Zero();
@@ -33,7 +35,8 @@ bool SphereFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3d>
   }
   const Eigen::SelfAdjointEigenSolver<Matrix3d> eig(a);
   // Normals nearly parallel: the smallest eigenvalue of sum (I - n n^T) vanishes.
-  if (eig.info() != Eigen::Success || !(eig.eigenvalues()[0] > 1e-6 * eig.eigenvalues()[2])) return false;
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues()[0] > 1e-6 * eig.eigenvalues()[2]))
+    return false;
   const Vector3d c = a.ldlt().solve(b);
   double r = 0;
   for (const auto& x : p) r += (x - c).norm();
@@ -50,8 +53,10 @@ bool CylinderFromPatch(const std::vector<Vector3d>& p, const std::vector<Vector3
   for (const auto& v : n) m += v * v.transpose();
   const Eigen::SelfAdjointEigenSolver<Matrix3d> eig(m);
   // The normals must span a plane (second eigenvalue clearly above the smallest).
-  if (eig.info() != Eigen::Success || !(eig.eigenvalues()[1] > 1e-4 * eig.eigenvalues()[2])) return false;
-  const Vector3d a = eig.eigenvectors().col(0), e1 = eig.eigenvectors().col(1), e2 = eig.eigenvectors().col(2);
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues()[1] > 1e-4 * eig.eigenvalues()[2]))
+    return false;
+  const Vector3d a = eig.eigenvectors().col(0), e1 = eig.eigenvectors().col(1),
+                 e2 = eig.eigenvectors().col(2);
   Vector3d mean = Vector3d::Zero();
   for (const auto& x : p) mean += x;
   mean /= static_cast<double>(p.size());

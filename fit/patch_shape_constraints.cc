@@ -97,7 +97,8 @@ bool ShapeConstraintBasis(int k, const Tetrahedron& tet, const PatchShapeConstra
   for (const auto& g : groups) {
     Eigen::VectorXd col = Eigen::VectorXd::Zero(n);
     for (const auto& [index, d] : g) col[index] = d;
-    if (col.norm() == 0.0) return *error = "a vertex normal is orthogonal to all three edges", false;
+    if (col.norm() == 0.0)
+      return *error = "a vertex normal is orthogonal to all three edges", false;
     columns.push_back(col / col.norm());
   }
   if (columns.empty()) return *error = "the constraints leave no free control point", false;

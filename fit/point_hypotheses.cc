@@ -138,7 +138,8 @@ bool FromDirectionGrid(NodeType kind, const Vec3* p, Build build, std::vector<do
   std::vector<int> starts;
   for (const auto& [s, g] : ranked) {
     bool apart = true;
-    for (int o : starts) apart = apart && std::abs(grid[g].dot(grid[o])) < std::cos(10 * M_PI / 180);
+    for (int o : starts)
+      apart = apart && std::abs(grid[g].dot(grid[o])) < std::cos(10 * M_PI / 180);
     if (apart) starts.push_back(g);
     if (static_cast<int>(starts.size()) == kStarts) break;
   }
@@ -213,8 +214,9 @@ std::string PointSetDegeneracy(NodeType kind, const std::vector<Vec3>& points) {
   const int k = FreeParameterCount(kind);
   const std::string name = NodeTypeName(kind);
   if (static_cast<int>(points.size()) < k + 1)
-    return "too few points: a " + name + " has " + std::to_string(k) + " free parameters, so at least " +
-           std::to_string(k + 1) + " points are needed; the cloud has " + std::to_string(points.size());
+    return "too few points: a " + name + " has " + std::to_string(k) +
+           " free parameters, so at least " + std::to_string(k + 1) +
+           " points are needed; the cloud has " + std::to_string(points.size());
   if (kind == NodeType::kTorus) return "";
   Vec3 mean = Vec3::Zero();
   for (const Vec3& x : points) mean += x;
@@ -231,9 +233,9 @@ std::string PointSetDegeneracy(NodeType kind, const std::vector<Vec3>& points) {
   return "";
 }
 
-PointHypothesisSearch BestPointHypothesis(NodeType kind, const std::vector<Vec3>& points, double tau,
-                                          int budget, std::mt19937& rng,
-                                          const std::function<void(std::vector<double>*)>& constrain) {
+PointHypothesisSearch BestPointHypothesis(
+    NodeType kind, const std::vector<Vec3>& points, double tau, int budget, std::mt19937& rng,
+    const std::function<void(std::vector<double>*)>& constrain) {
   PointHypothesisSearch search;
   const int n = static_cast<int>(points.size()), k = FreeParameterCount(kind);
   if (kind == NodeType::kTorus || n < k) return search;
@@ -257,11 +259,20 @@ PointHypothesisSearch BestPointHypothesis(NodeType kind, const std::vector<Vec3>
     for (int j = 0; j < k; ++j) sample[j] = points[idx[j]];
     bool ok = false;
     switch (kind) {
-      case NodeType::kPlane: ok = PlaneFromPoints(sample, &h); break;
-      case NodeType::kSphere: ok = SphereFromPoints(sample, &h); break;
-      case NodeType::kCylinder: ok = CylinderFromPoints(sample, &h); break;
-      case NodeType::kCone: ok = ConeFromPoints(sample, &h); break;
-      default: break;
+      case NodeType::kPlane:
+        ok = PlaneFromPoints(sample, &h);
+        break;
+      case NodeType::kSphere:
+        ok = SphereFromPoints(sample, &h);
+        break;
+      case NodeType::kCylinder:
+        ok = CylinderFromPoints(sample, &h);
+        break;
+      case NodeType::kCone:
+        ok = ConeFromPoints(sample, &h);
+        break;
+      default:
+        break;
     }
     if (!ok) continue;
     if (constrain) constrain(&h);

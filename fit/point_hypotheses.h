@@ -45,8 +45,8 @@ struct PointHypothesisSearch {
 };
 
 // constrain (may be empty) is applied to every hypothesis before scoring (fixed fields).
-PointHypothesisSearch BestPointHypothesis(NodeType kind, const std::vector<Eigen::Vector3d>& points,
-                                          double tau, int budget, std::mt19937& rng,
-                                          const std::function<void(std::vector<double>*)>& constrain);
+PointHypothesisSearch BestPointHypothesis(
+    NodeType kind, const std::vector<Eigen::Vector3d>& points, double tau, int budget,
+    std::mt19937& rng, const std::function<void(std::vector<double>*)>& constrain);
 
 }  // namespace implicitfit

@@ -20,37 +20,46 @@ namespace {
 
 using Eigen::Vector3d;
 
-constexpr int kMaxRefitPoints = 2000;   // points of a growth refit (evenly spread subset)
-constexpr int kMaxCostPoints = 4000;    // points of the kind-selection cost
-constexpr int kGrowthRounds = 8;        // refit-and-regrow rounds of one candidate
-constexpr double kKeepFraction = 0.8;   // a candidate is accepted if this much is still free
-constexpr double kSimplerFraction = 0.97;  // a simpler kind explaining this much wins
-constexpr double kMaxRmsSigmas = 2.0;   // a candidate's RMS must stay under this * sigma
-constexpr double kFarFactor = 10.0;       // shapes beyond this many cloud diagonals: degenerate
+constexpr int kMaxRefitPoints = 2000;       // points of a growth refit (evenly spread subset)
+constexpr int kMaxCostPoints = 4000;        // points of the kind-selection cost
+constexpr int kGrowthRounds = 8;            // refit-and-regrow rounds of one candidate
+constexpr double kKeepFraction = 0.8;       // a candidate is accepted if this much is still free
+constexpr double kSimplerFraction = 0.97;   // a simpler kind explaining this much wins
+constexpr double kMaxRmsSigmas = 2.0;       // a candidate's RMS must stay under this * sigma
+constexpr double kFarFactor = 10.0;         // shapes beyond this many cloud diagonals: degenerate
 constexpr double kMaxNoiseToSpacing = 0.4;  // noisier than this * spacing: a volume, no surface
-constexpr int kFallbackSteps = 3;          // crease points join a primitive this close
+constexpr int kFallbackSteps = 3;           // crease points join a primitive this close
 constexpr double kIncoherentNormalDeg = 15.0;  // median neighbour normal angle of a volume
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
 
 // Degrees of freedom of a kind (the BIC penalty).
 int DegreesOfFreedom(NodeType kind) {
   switch (kind) {
-    case NodeType::kPlane: return 3;
-    case NodeType::kSphere: return 4;
-    case NodeType::kCylinder: return 5;
-    case NodeType::kCone: return 6;
-    default: return 7;
+    case NodeType::kPlane:
+      return 3;
+    case NodeType::kSphere:
+      return 4;
+    case NodeType::kCylinder:
+      return 5;
+    case NodeType::kCone:
+      return 6;
+    default:
+      return 7;
   }
 }
 
 // Minimal sample size of a kind (fit/minimal_samples.h).
 int SampleSize(NodeType kind) {
   switch (kind) {
-    case NodeType::kPlane: return 1;
+    case NodeType::kPlane:
+      return 1;
     case NodeType::kSphere:
-    case NodeType::kCylinder: return 2;
-    case NodeType::kCone: return 3;
-    default: return 7;
+    case NodeType::kCylinder:
+      return 2;
+    case NodeType::kCone:
+      return 3;
+    default:
+      return 7;
   }
 }
 
@@ -106,8 +115,15 @@ class Detector {
   Detector(const std::vector<Vector3d>& x, const std::vector<Vector3d>& n,
            const std::vector<std::vector<int>>& nb, const Scales& scales, int min_points,
            const DetectionOptions& options)
-      : x_(x), n_(n), nb_(nb), tau_(scales.tau), cos_(scales.cos_theta), sigma_(scales.sigma), min_points_(min_points),
-        options_(options), labels_(x.size(), -1) {}
+      : x_(x),
+        n_(n),
+        nb_(nb),
+        tau_(scales.tau),
+        cos_(scales.cos_theta),
+        sigma_(scales.sigma),
+        min_points_(min_points),
+        options_(options),
+        labels_(x.size(), -1) {}
 
   bool Supports(const PrimitiveFunction& f, int i) const {
     Vector3d g;
@@ -130,7 +146,8 @@ class Detector {
   };
 
   // The free points connected to `sources` through points that support f.
-  std::vector<int> Grow(const PrimitiveFunction& f, const std::vector<int>& sources, Workspace& w) const {
+  std::vector<int> Grow(const PrimitiveFunction& f, const std::vector<int>& sources,
+                        Workspace& w) const {
     w.Next(x_.size());
     std::vector<int> out;
     for (int s : sources) {
@@ -162,7 +179,8 @@ class Detector {
     return out;
   }
 
-  bool Hypothesis(NodeType kind, const std::vector<int>& patch, std::mt19937& rng, std::vector<double>* h) const {
+  bool Hypothesis(NodeType kind, const std::vector<int>& patch, std::mt19937& rng,
+                  std::vector<double>* h) const {
     std::uniform_int_distribution<size_t> pick(0, patch.size() - 1);
     const int m = SampleSize(kind);
     std::vector<Vec3> p, q;
@@ -172,12 +190,18 @@ class Detector {
       q.push_back(n_[i]);
     }
     switch (kind) {
-      case NodeType::kPlane: return PlaneFromSample(p[0], q[0], h);
-      case NodeType::kSphere: return SphereFromSample(p.data(), q.data(), h);
-      case NodeType::kCylinder: return CylinderFromSample(p.data(), q.data(), h);
-      case NodeType::kCone: return ConeFromSample(p.data(), q.data(), h);
-      case NodeType::kTorus: return TorusFromSample(p, q, h);
-      default: return false;
+      case NodeType::kPlane:
+        return PlaneFromSample(p[0], q[0], h);
+      case NodeType::kSphere:
+        return SphereFromSample(p.data(), q.data(), h);
+      case NodeType::kCylinder:
+        return CylinderFromSample(p.data(), q.data(), h);
+      case NodeType::kCone:
+        return ConeFromSample(p.data(), q.data(), h);
+      case NodeType::kTorus:
+        return TorusFromSample(p, q, h);
+      default:
+        return false;
     }
   }
 
@@ -204,12 +228,14 @@ class Detector {
   };
 
   // Best hypothesis of `kind` on the patch, refitted and grown.
-  Grown GrowKind(NodeType kind, const std::vector<int>& patch, std::mt19937& rng, Workspace& w) const {
+  Grown GrowKind(NodeType kind, const std::vector<int>& patch, std::mt19937& rng,
+                 Workspace& w) const {
     Grown best;
     std::vector<double> h;
     int best_score = 0;
     std::vector<double> params;
-    const int tries = kind == NodeType::kPlane ? std::max(4, options_.hypotheses / 3) : options_.hypotheses;
+    const int tries =
+        kind == NodeType::kPlane ? std::max(4, options_.hypotheses / 3) : options_.hypotheses;
     // Try 0: the fit to the whole patch (fit/patch_hypotheses.h), then minimal samples.
     std::vector<Vector3d> px, pn;
     for (int i : patch) px.push_back(x_[i]), pn.push_back(n_[i]);
@@ -248,7 +274,9 @@ class Detector {
     best.support = Grow(PrimitiveFunction(kind, params), sources, w);
     for (int round = 0; round < kGrowthRounds; ++round) {
       std::vector<double> refit = best.params;
-      if (RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit) < 0 || !Finite(refit)) break;
+      if (RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit) < 0 ||
+          !Finite(refit))
+        break;
       std::vector<int> s = patch_support(refit);
       if (s.empty()) break;
       std::vector<int> grown = Grow(PrimitiveFunction(kind, refit), s, w);
@@ -260,7 +288,8 @@ class Detector {
     }
     // The least-squares fit to the final support (the kind selection compares fitted models).
     std::vector<double> refit = best.params;
-    const double rms = RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
+    const double rms =
+        RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
     if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
     // A right model leaves the noise (RMS ~ sigma); a wrong one that happens to cross the band
     // (a cone through the faces at a vertex) spreads its residuals over it (RMS ~ tau / sqrt 3).
@@ -331,8 +360,9 @@ class Detector {
 
   void Run(DetectionResult* result) {
     const int N = static_cast<int>(x_.size());
-    const int threads = options_.num_threads > 0 ? options_.num_threads
-                                                 : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = options_.num_threads > 0
+                            ? options_.num_threads
+                            : std::max(1u, std::thread::hardware_concurrency());
     std::vector<Workspace> workspaces(threads);
     // Seedable points: normal within theta of each of its first 8 neighbours (not on a crease).
     std::vector<int> pool;
@@ -380,7 +410,8 @@ class Detector {
         std::vector<int> free;
         for (int i : c.support)
           if (labels_[i] < 0) free.push_back(i);
-        if (free.size() < kKeepFraction * c.support.size() || static_cast<int>(free.size()) < min_points_) {
+        if (free.size() < kKeepFraction * c.support.size() ||
+            static_cast<int>(free.size()) < min_points_) {
           pool.push_back(seeds[b]);  // conflicted: may be seeded again
           continue;
         }
@@ -438,7 +469,8 @@ class Detector {
     std::vector<DetectedPrimitive> merged;
     std::vector<int> new_id(K, -1);
     for (int a = 0; a < K; ++a)
-      if (root(a) == a) new_id[a] = static_cast<int>(merged.size()), merged.push_back(primitives_[a]);
+      if (root(a) == a)
+        new_id[a] = static_cast<int>(merged.size()), merged.push_back(primitives_[a]);
     for (int a = 0; a < K; ++a)
       if (root(a) != a) {
         auto& into = merged[new_id[root(a)]].points;
@@ -447,7 +479,8 @@ class Detector {
     for (auto& p : merged) {
       std::sort(p.points.begin(), p.points.end());
       std::vector<double> refit = p.parameters;
-      if (RefitPrimitiveLocally(p.kind, x_, Spread(p.points, kMaxRefitPoints), &refit) >= 0 && Finite(refit))
+      if (RefitPrimitiveLocally(p.kind, x_, Spread(p.points, kMaxRefitPoints), &refit) >= 0 &&
+          Finite(refit))
         p.parameters = refit;
     }
     for (auto& l : labels_)
@@ -462,8 +495,9 @@ class Detector {
   // from minimal samples), refitted by least squares.
   int Simplify() {
     int changed = 0;
-    const int threads = options_.num_threads > 0 ? options_.num_threads
-                                                 : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = options_.num_threads > 0
+                            ? options_.num_threads
+                            : std::max(1u, std::thread::hardware_concurrency());
     std::vector<char> flags(primitives_.size(), 0);
     ParallelFor(static_cast<int>(primitives_.size()), threads, [&](int k, int) {
       DetectedPrimitive& p = primitives_[k];
@@ -502,7 +536,8 @@ class Detector {
         }
         if (best < 0) continue;
         std::vector<double> refit = best_params;
-        if (RefitPrimitiveLocally(kind, x_, s, &refit, 30) >= 0 && Finite(refit) && Reasonable(kind, refit)) {
+        if (RefitPrimitiveLocally(kind, x_, s, &refit, 30) >= 0 && Finite(refit) &&
+            Reasonable(kind, refit)) {
           const int n = explained(kind, refit);
           if (n >= best) best = n, best_params = refit;
         }
@@ -523,7 +558,8 @@ class Detector {
   void Reassign() {
     const int N = static_cast<int>(x_.size());
     const int K = static_cast<int>(primitives_.size());
-    // Boxes of the supports, widened by tau and a few spacings (reassigned points lie next to them).
+    // Boxes of the supports, widened by tau and a few spacings (reassigned points lie next to
+    // them).
     std::vector<Eigen::AlignedBox3d> boxes(K);
     for (int k = 0; k < K; ++k) {
       for (int i : primitives_[k].points) boxes[k].extend(x_[i]);
@@ -534,11 +570,13 @@ class Detector {
     for (const auto& p : primitives_) fs.emplace_back(p.kind, p.parameters);
     std::vector<int> labels(N, -1);
     std::vector<int> fallback(N, -1);  // nearest within tau whatever the normal
-    const int threads = options_.num_threads > 0 ? options_.num_threads
-                                                 : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = options_.num_threads > 0
+                            ? options_.num_threads
+                            : std::max(1u, std::thread::hardware_concurrency());
     const int chunks = 64;
     ParallelFor(chunks, threads, [&](int c, int) {
-      for (int i = static_cast<int>(static_cast<long>(N) * c / chunks); i < static_cast<long>(N) * (c + 1) / chunks; ++i) {
+      for (int i = static_cast<int>(static_cast<long>(N) * c / chunks);
+           i < static_cast<long>(N) * (c + 1) / chunks; ++i) {
         double best = tau_, best_any = tau_;
         for (int k = 0; k < K; ++k) {
           if (!boxes[k].contains(x_[i])) continue;
@@ -580,14 +618,16 @@ class Detector {
       for (size_t h = 0; h < q.size(); ++h)
         for (int j : nb_[q[h]])
           if (labels[j] == labels[i] && component[j] < 0) component[j] = id, q.push_back(j);
-      if (static_cast<int>(q.size()) > best_size[labels[i]]) best_size[labels[i]] = static_cast<int>(q.size()), best_component[labels[i]] = id;
+      if (static_cast<int>(q.size()) > best_size[labels[i]])
+        best_size[labels[i]] = static_cast<int>(q.size()), best_component[labels[i]] = id;
     }
     for (int i = 0; i < N; ++i)
       if (labels[i] >= 0 && component[i] != best_component[labels[i]]) labels[i] = -1;
     std::vector<int> order;
     for (int k = 0; k < K; ++k)
       if (best_size[k] >= min_points_) order.push_back(k);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return best_size[a] > best_size[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return best_size[a] > best_size[b]; });
     std::vector<int> new_id(K, -1);
     std::vector<DetectedPrimitive> kept;
     for (int k : order) new_id[k] = static_cast<int>(kept.size()), kept.push_back(primitives_[k]);
@@ -603,8 +643,9 @@ class Detector {
   // Maximum-likelihood refinement of `fit` on each primitive's points, then its figures.
   void Refine() {
     const int K = static_cast<int>(primitives_.size());
-    const int threads = options_.num_threads > 0 ? options_.num_threads
-                                                 : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = options_.num_threads > 0
+                            ? options_.num_threads
+                            : std::max(1u, std::thread::hardware_concurrency());
     ParallelFor(K, threads, [&](int k, int) {
       DetectedPrimitive& p = primitives_[k];
       if (options_.refine) {
@@ -667,19 +708,23 @@ bool DetectionOptions::IsValid(std::string* error) const {
   };
   if (kinds.empty()) return fail("no primitive kind to detect");
   for (NodeType k : kinds)
-    if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder || k == NodeType::kCone ||
-          k == NodeType::kTorus))
+    if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder ||
+          k == NodeType::kCone || k == NodeType::kTorus))
       return fail(std::string("cannot detect a ") + NodeTypeName(k));
-  if (!(threshold >= 0) || !std::isfinite(threshold)) return fail("threshold must be >= 0 and finite");
-  if (!(normal_angle_deg >= 0 && normal_angle_deg < 90)) return fail("normal angle must be in [0, 90) degrees");
+  if (!(threshold >= 0) || !std::isfinite(threshold))
+    return fail("threshold must be >= 0 and finite");
+  if (!(normal_angle_deg >= 0 && normal_angle_deg < 90))
+    return fail("normal angle must be in [0, 90) degrees");
   if (min_points < 0) return fail("min_points must be >= 0");
   if (patch_size < 8) return fail("patch_size must be >= 8");
-  if (hypotheses < 1 || seeds_per_round < 1) return fail("hypotheses and seeds_per_round must be >= 1");
+  if (hypotheses < 1 || seeds_per_round < 1)
+    return fail("hypotheses and seeds_per_round must be >= 1");
   if (num_threads < 0) return fail("num_threads must be >= 0");
   return true;
 }
 
-DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std::vector<Vector3d>& normals,
+DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
+                                 const std::vector<Vector3d>& normals,
                                  const std::vector<std::vector<int>>& neighbours, double spacing,
                                  const DetectionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -687,15 +732,18 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std:
   if (!options.IsValid(&error)) throw std::invalid_argument("DetectPrimitives: " + error);
   const size_t N = points.size();
   if (normals.size() != N || neighbours.size() != N)
-    throw std::invalid_argument("DetectPrimitives: points, normals and neighbourhoods differ in count");
+    throw std::invalid_argument(
+        "DetectPrimitives: points, normals and neighbourhoods differ in count");
   for (const auto& nb : neighbours)
     for (int j : nb)
-      if (j < 0 || static_cast<size_t>(j) >= N) throw std::invalid_argument("DetectPrimitives: neighbour index out of range");
+      if (j < 0 || static_cast<size_t>(j) >= N)
+        throw std::invalid_argument("DetectPrimitives: neighbour index out of range");
   DetectionResult result;
   result.labels.assign(N, -1);
   result.residuals.assign(N, 0.0);
   result.spacing = spacing;
-  result.min_points = options.min_points > 0 ? options.min_points : std::max<int>(10, static_cast<int>(N / 500));
+  result.min_points =
+      options.min_points > 0 ? options.min_points : std::max<int>(10, static_cast<int>(N / 500));
   if (N < 3) return result;
 
   // Recentred copy (precision far from the origin).
@@ -720,10 +768,12 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points, const std:
     angle.push_back(Median(a));
   }
   result.noise = 1.4826 * Median(tangent);
-  result.threshold = options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
+  result.threshold =
+      options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
   const double median_angle_deg = Median(angle) * 180.0 / M_PI;
-  result.normal_angle_deg =
-      options.normal_angle_deg > 0 ? options.normal_angle_deg : std::clamp(3.0 * median_angle_deg, 20.0, 45.0);
+  result.normal_angle_deg = options.normal_angle_deg > 0
+                                ? options.normal_angle_deg
+                                : std::clamp(3.0 * median_angle_deg, 20.0, 45.0);
   if (!(result.threshold > 0)) return result;  // all points coincide
   // Points filling a volume (e.g. uniform random points) lie off any tangent plane by about half
   // their spacing (measured: 0.58 s) and their normals disagree from one neighbour to the next

@@ -59,15 +59,15 @@ namespace implicitfit {
 struct DetectionOptions {
   std::vector<NodeType> kinds = {NodeType::kPlane, NodeType::kSphere, NodeType::kCylinder,
                                  NodeType::kCone, NodeType::kTorus};
-  double threshold = 0.0;    // distance band tau; <= 0: from the data (see above)
+  double threshold = 0.0;         // distance band tau; <= 0: from the data (see above)
   double normal_angle_deg = 0.0;  // normal band theta; <= 0: from the data
-  int min_points = 0;        // smallest primitive; <= 0: max(10, N / 500)
-  unsigned seed = 1;         // the result is a function of the seed only
-  int num_threads = 0;       // 0: hardware concurrency
-  int patch_size = 48;       // points of a seed's local patch
-  int hypotheses = 24;       // minimal-sample hypotheses per kind per seed
-  int seeds_per_round = 16;  // seeds evaluated in parallel per round (fixed: determinism)
-  bool refine = true;        // final maximum-likelihood refinement (Ceres)
+  int min_points = 0;             // smallest primitive; <= 0: max(10, N / 500)
+  unsigned seed = 1;              // the result is a function of the seed only
+  int num_threads = 0;            // 0: hardware concurrency
+  int patch_size = 48;            // points of a seed's local patch
+  int hypotheses = 24;            // minimal-sample hypotheses per kind per seed
+  int seeds_per_round = 16;       // seeds evaluated in parallel per round (fixed: determinism)
+  bool refine = true;             // final maximum-likelihood refinement (Ceres)
 
   bool IsValid(std::string* error) const;
 };

@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <random>
-#include <iterator>
 #include <thread>
 
 #include "fit/compressed_distance_cost.h"
@@ -18,9 +18,9 @@
 #include "fit/minimal_samples.h"
 #include "fit/point_hypotheses.h"
 #include "fit/primitive_jacobians.h"
+#include "fit/primitive_tangent.h"
 #include "fit/thread_count.h"
 #include "model/median.h"
-#include "fit/primitive_tangent.h"
 
 namespace implicitfit {
 namespace {
@@ -72,10 +72,11 @@ void Canonicalise(NodeType kind, std::vector<double>* p, const Eigen::Vector3d& 
 // Closed-form f and grad f (fit/primitive_jacobians.h) for the inlier tests.
 template <typename E>
 struct Kind {
-  static_assert(PrimitiveDistance<E>::kAvailable, "the primitive fitter needs closed-form derivatives");
+  static_assert(PrimitiveDistance<E>::kAvailable,
+                "the primitive fitter needs closed-form derivatives");
   // True when |f(x)| < limit and |cos(grad f(x), n)| >= min_cos.
-  static bool Supports(const PrimitiveDistance<E>& f, const Eigen::Vector3d& x, const Eigen::Vector3d& n, double limit,
-                       double min_cos) {
+  static bool Supports(const PrimitiveDistance<E>& f, const Eigen::Vector3d& x,
+                       const Eigen::Vector3d& n, double limit, double min_cos) {
     double g[3];
     if (!(std::abs(f(x.data(), nullptr, g)) < limit)) return false;
     return NormalCos(g, n) >= min_cos;
@@ -105,7 +106,8 @@ struct Hypothesizer {
         const size_t i = pick(rng), j = pick(rng);
         if (i == j) return false;
         const Vec3 p[2] = {x[i], x[j]}, m[2] = {n[i], n[j]};
-        return kind == NodeType::kSphere ? SphereFromSample(p, m, params) : CylinderFromSample(p, m, params);
+        return kind == NodeType::kSphere ? SphereFromSample(p, m, params)
+                                         : CylinderFromSample(p, m, params);
       }
       case NodeType::kCone: {
         const size_t i = pick(rng), j = pick(rng), k = pick(rng);
@@ -158,15 +160,16 @@ void PartialShuffle(std::vector<T>* v, size_t k, std::mt19937& rng) {
 // angle over every inlier.
 double AcosUnit(double c) {
   double q = -0.0012624911;
-  for (double a : {0.0066700901, -0.0170881256, 0.0308918810, -0.0501743046, 0.0889789874, -0.2145988016,
-                   1.5707963050})
+  for (double a : {0.0066700901, -0.0170881256, 0.0308918810, -0.0501743046, 0.0889789874,
+                   -0.2145988016, 1.5707963050})
     q = q * c + a;
   return std::sqrt(1.0 - c) * q;
 }
 
 template <typename E>
 PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
-                       const std::vector<Eigen::Vector3d>& input_normals, const PrimitiveFitOptions& options) {
+                       const std::vector<Eigen::Vector3d>& input_normals,
+                       const PrimitiveFitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PrimitiveFitResult result;
   const NodeType kind = options.kind;
@@ -185,7 +188,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     hi = hi.cwiseMax(pts[i]);
   }
   // The costs read pts as a flat xyz array (Vector3d is three packed doubles), no second copy.
-  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "Vector3d must be three packed doubles");
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double),
+                "Vector3d must be three packed doubles");
   const double* xyz = pts[0].data();
   const double tau = options.threshold > 0 ? options.threshold : 0.01 * (hi - lo).norm();
 
@@ -207,10 +211,12 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     for (const ParameterField& f : ParameterFieldsOf(kind)) {
       auto it = options.fixed.find(f.name);
       if (it != options.fixed.end())
-        for (int j = 0; j < f.size; ++j) fixed_values[k + j] = it->second[j] - (IsPositionField(f.name) ? centroid[j] : 0.0);
+        for (int j = 0; j < f.size; ++j)
+          fixed_values[k + j] = it->second[j] - (IsPositionField(f.name) ? centroid[j] : 0.0);
       k += f.size;
     }
-    if (kind == NodeType::kPlane && options.fixed.count("offset") && options.fixed.count("normal")) {
+    if (kind == NodeType::kPlane && options.fixed.count("offset") &&
+        options.fixed.count("normal")) {
       const auto& nn = options.fixed.at("normal");
       const Eigen::Vector3d nv(nn[0], nn[1], nn[2]);
       fixed_values[3] = options.fixed.at("offset")[0] - nv.dot(centroid) / nv.norm();
@@ -236,7 +242,10 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   // Adaptive RANSAC stopping: after t draws with best inlier ratio w, a sample of m points
   // free of outliers was drawn with probability 1 - (1 - w^m)^t; stop once that reaches
   // options.confidence (and after at least options.min_hypotheses).
-  const int m = kind == NodeType::kPlane ? 1 : kind == NodeType::kCone ? 3 : kind == NodeType::kTorus ? 7 : 2;
+  const int m = kind == NodeType::kPlane   ? 1
+                : kind == NodeType::kCone  ? 3
+                : kind == NodeType::kTorus ? 7
+                                           : 2;
   int needed = options.hypotheses;
   if (!options.initial.empty()) {  // refinement from given parameters (e.g. the detector's)
     best = options.initial;
@@ -249,22 +258,26 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     apply_fixed(&h);
     const PrimitiveDistance<E> hf(h.data());
     int score = 0;
-    for (size_t i : sub) score += Kind<E>::Supports(hf, pts[i], input_normals[i], tau, options.normal_cos);
+    for (size_t i : sub)
+      score += Kind<E>::Supports(hf, pts[i], input_normals[i], tau, options.normal_cos);
     if (score > best_score) {
       best_score = score;
       best = h;
       const double w = std::min(0.999, static_cast<double>(score) / sub.size());
       const double k = std::log(1.0 - options.confidence) / std::log(1.0 - std::pow(w, m));
-      if (std::isfinite(k)) needed = std::clamp(static_cast<int>(std::ceil(k)), options.min_hypotheses, options.hypotheses);
+      if (std::isfinite(k))
+        needed =
+            std::clamp(static_cast<int>(std::ceil(k)), options.min_hypotheses, options.hypotheses);
     }
   }
   if (!has_normals && options.initial.empty()) {
-    const PointHypothesisSearch search = BestPointHypothesis(kind, pts, tau, options.hypotheses, rng, apply_fixed);
+    const PointHypothesisSearch search =
+        BestPointHypothesis(kind, pts, tau, options.hypotheses, rng, apply_fixed);
     best = search.parameters;
     if (best.empty()) {
       result.message = "no valid hypothesis from " + std::to_string(search.tried) + " subsets of " +
-                       std::to_string(FreeParameterCount(kind)) + " points (degenerate data for a " +
-                       NodeTypeName(kind) + "?)";
+                       std::to_string(FreeParameterCount(kind)) +
+                       " points (degenerate data for a " + NodeTypeName(kind) + "?)";
       return result;
     }
   }
@@ -295,7 +308,9 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     in.reserve(pool->size());
     const PrimitiveDistance<E> f(p.data());
     for (int i : *pool)
-      if (Kind<E>::Supports(f, pts[i], has_normals ? input_normals[i] : no_normal, limit, normal_cos)) in.push_back(i);
+      if (Kind<E>::Supports(f, pts[i], has_normals ? input_normals[i] : no_normal, limit,
+                            normal_cos))
+        in.push_back(i);
     return in;
   };
   inliers = classify(params, band);
@@ -313,8 +328,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     const size_t floor = has_normals ? options.min_inliers : FreeParameterCount(kind) + 1;
     const size_t min_needed = std::max<size_t>(floor, options.min_inlier_fraction * pool->size());
     if (inliers.size() < min_needed) {
-      result.message = "too few inliers: " + std::to_string(inliers.size()) + " of " + std::to_string(N) +
-                       " points (need " + std::to_string(min_needed) + ")";
+      result.message = "too few inliers: " + std::to_string(inliers.size()) + " of " +
+                       std::to_string(N) + " points (need " + std::to_string(min_needed) + ")";
       result.parameters = params;
       Translate(kind, &result.parameters, centroid);
       return result;
@@ -334,9 +349,10 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     // One compressed block (P + 1 residuals standing for a chunk of points, with the same
     // normal equations) per chunk: the chunks are evaluated in parallel.
     for (size_t s = 0; s < inliers.size(); s += kChunk) {
-      std::vector<int> chunk(inliers.begin() + s, inliers.begin() + std::min(inliers.size(), s + kChunk));
-      problem->AddResidualBlock(new CompressedDistanceCost<E>(xyz, std::move(chunk), block_sizes), nullptr,
-                                block_ptrs);
+      std::vector<int> chunk(inliers.begin() + s,
+                             inliers.begin() + std::min(inliers.size(), s + kChunk));
+      problem->AddResidualBlock(new CompressedDistanceCost<E>(xyz, std::move(chunk), block_sizes),
+                                nullptr, block_ptrs);
     }
     for (size_t b = 0; b < fields.size(); ++b) {
       const std::string name = fields[b].name;
@@ -344,7 +360,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
         problem->SetParameterBlockConstant(block_ptrs[b]);
         continue;
       }
-      if (IsDirectionField(name)) problem->SetManifold(block_ptrs[b], new ceres::SphereManifold<3>());
+      if (IsDirectionField(name))
+        problem->SetManifold(block_ptrs[b], new ceres::SphereManifold<3>());
       if (IsRadiusField(name)) problem->SetParameterLowerBound(block_ptrs[b], 0, 1e-12);
       if (name == "half_angle") {
         problem->SetParameterLowerBound(block_ptrs[b], 0, 1e-6);
@@ -387,7 +404,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
       // bounds the band from below.
       double rss = 0.0;
       for (double v : abs_r) rss += v * v;
-      const double dof = std::max(1.0, static_cast<double>(abs_r.size()) - FreeParameterCount(kind));
+      const double dof =
+          std::max(1.0, static_cast<double>(abs_r.size()) - FreeParameterCount(kind));
       band = std::max(band, options.band_sigmas * std::sqrt(rss / dof));
     }
     std::vector<int> next = classify(params, band);
@@ -415,7 +433,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
     const double r = pf(pts[i].data(), nullptr, g);
     ss += r * r;
     result.max_abs = std::max(result.max_abs, std::abs(r));
-    if (has_normals) angle_sum += AcosUnit(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
+    if (has_normals)
+      angle_sum += AcosUnit(std::min(1.0, Kind<E>::NormalCos(g, input_normals[i]))) * 180.0 / M_PI;
   }
   result.rms = std::sqrt(ss / inliers.size());
   result.mean_normal_angle_deg = has_normals ? angle_sum / inliers.size() : -1.0;
@@ -444,7 +463,8 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
         if (!problem->IsParameterBlockConstant(b.data())) {
           Eigen::MatrixXd c(b.size(), b.size());
           covariance.GetCovarianceBlock(b.data(), b.data(), c.data());
-          for (size_t j = 0; j < b.size(); ++j) result.standard_deviations[k + j] = std::sqrt(std::max(0.0, c(j, j) * s2));
+          for (size_t j = 0; j < b.size(); ++j)
+            result.standard_deviations[k + j] = std::sqrt(std::max(0.0, c(j, j) * s2));
         }
         k += static_cast<int>(b.size());
       }
@@ -469,15 +489,17 @@ bool PrimitiveFitOptions::IsValid(std::string* error) const {
     return false;
   };
   const NodeType k = kind;
-  if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder || k == NodeType::kCone ||
-        k == NodeType::kTorus))
+  if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder ||
+        k == NodeType::kCone || k == NodeType::kTorus))
     return fail(std::string("cannot fit a ") + NodeTypeName(k) + " with the primitive fitter");
-  if (hypotheses < 1 || min_hypotheses < 1) return fail("hypotheses and min_hypotheses must be >= 1");
+  if (hypotheses < 1 || min_hypotheses < 1)
+    return fail("hypotheses and min_hypotheses must be >= 1");
   if (!(confidence > 0 && confidence < 1)) return fail("confidence must be in (0, 1)");
   if (!initial.empty() && static_cast<int>(initial.size()) != NumParametersOf(k))
-    return fail("initial parameters: " + std::to_string(initial.size()) + " values, a " + NodeTypeName(k) +
-                " has " + std::to_string(NumParametersOf(k)));
-  if (score_subsample < 10 || working_subsample < 10) return fail("subsamples must hold >= 10 points");
+    return fail("initial parameters: " + std::to_string(initial.size()) + " values, a " +
+                NodeTypeName(k) + " has " + std::to_string(NumParametersOf(k)));
+  if (score_subsample < 10 || working_subsample < 10)
+    return fail("subsamples must hold >= 10 points");
   if (!(normal_cos >= 0 && normal_cos <= 1)) return fail("normal_cos must be in [0, 1]");
   if (!(band_sigmas > 0)) return fail("band_sigmas must be > 0");
   for (const auto& [name, value] : fixed) {
@@ -488,7 +510,8 @@ bool PrimitiveFitOptions::IsValid(std::string* error) const {
         if (static_cast<int>(value.size()) != f.size)
           return fail("fixed field " + name + " takes " + std::to_string(f.size) + " value(s)");
       }
-    if (!known) return fail("fixed field '" + name + "' is not a parameter of a " + NodeTypeName(k));
+    if (!known)
+      return fail("fixed field '" + name + "' is not a parameter of a " + NodeTypeName(k));
   }
   return true;
 }
@@ -500,7 +523,8 @@ Model PrimitiveFitResult::ToModel(NodeType kind) const {
 }
 
 bool FittableKindFromName(const std::string& name, NodeType* kind) {
-  for (NodeType k : {NodeType::kPlane, NodeType::kSphere, NodeType::kCylinder, NodeType::kCone, NodeType::kTorus})
+  for (NodeType k : {NodeType::kPlane, NodeType::kSphere, NodeType::kCylinder, NodeType::kCone,
+                     NodeType::kTorus})
     if (name == NodeTypeName(k)) {
       *kind = k;
       return true;
@@ -509,7 +533,8 @@ bool FittableKindFromName(const std::string& name, NodeType* kind) {
 }
 
 PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
-                                const std::vector<Eigen::Vector3d>& normals, const PrimitiveFitOptions& options) {
+                                const std::vector<Eigen::Vector3d>& normals,
+                                const PrimitiveFitOptions& options) {
   PrimitiveFitResult result;
   std::string error;
   if (!options.IsValid(&error)) {
@@ -525,11 +550,21 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     return result;
   }
   switch (options.kind) {
-    case NodeType::kPlane: result = Fit<PlaneEvaluator>(points, normals, options); break;
-    case NodeType::kSphere: result = Fit<SphereEvaluator>(points, normals, options); break;
-    case NodeType::kCylinder: result = Fit<CylinderEvaluator>(points, normals, options); break;
-    case NodeType::kCone: result = Fit<ConeEvaluator>(points, normals, options); break;
-    case NodeType::kTorus: result = Fit<TorusEvaluator>(points, normals, options); break;
+    case NodeType::kPlane:
+      result = Fit<PlaneEvaluator>(points, normals, options);
+      break;
+    case NodeType::kSphere:
+      result = Fit<SphereEvaluator>(points, normals, options);
+      break;
+    case NodeType::kCylinder:
+      result = Fit<CylinderEvaluator>(points, normals, options);
+      break;
+    case NodeType::kCone:
+      result = Fit<ConeEvaluator>(points, normals, options);
+      break;
+    case NodeType::kTorus:
+      result = Fit<TorusEvaluator>(points, normals, options);
+      break;
     case NodeType::kEllipsoid:
     case NodeType::kQuadric:
     case NodeType::kBernsteinPatch:

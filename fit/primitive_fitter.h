@@ -38,25 +38,25 @@
 namespace implicitfit {
 
 struct PrimitiveFitOptions {
-  NodeType kind = NodeType::kSphere;     // plane, sphere, cylinder, cone or torus
-  unsigned seed = 1;                     // RNG seed: the fit is deterministic for a given seed
-  int hypotheses = 400;                  // most minimal-sample hypotheses tried
-  int min_hypotheses = 30;               // fewest tried (adaptive stopping below)
-  double confidence = 0.999;             // stop once an all-inlier sample was drawn this surely
-  int score_subsample = 2000;            // points used to score hypotheses
-  int working_subsample = 5000;          // points of the coarse refinement rounds
-  double threshold = 0.0;                // initial inlier band tau; <= 0: 1% of the bbox diagonal
-  double normal_cos = 0.8;               // inlier normal agreement |cos| (used when normals exist)
-  double band_sigmas = 3.0;              // final inlier band in units of the estimated sigma
-  int max_rounds = 8;                    // refit / re-classify rounds
-  double stable_fraction = 0.002;        // inlier set "stable" when at most this fraction changed
-  int min_inliers = 20;                  // fewer: the fit fails (from points alone: k + 1)
-  double min_inlier_fraction = 0.02;     // fewer than this fraction of the points: the fit fails
-  int num_threads = 0;                   // Ceres threads; 0 = hardware concurrency
-  bool compute_covariance = true;        // parameter standard deviations
+  NodeType kind = NodeType::kSphere;  // plane, sphere, cylinder, cone or torus
+  unsigned seed = 1;                  // RNG seed: the fit is deterministic for a given seed
+  int hypotheses = 400;               // most minimal-sample hypotheses tried
+  int min_hypotheses = 30;            // fewest tried (adaptive stopping below)
+  double confidence = 0.999;          // stop once an all-inlier sample was drawn this surely
+  int score_subsample = 2000;         // points used to score hypotheses
+  int working_subsample = 5000;       // points of the coarse refinement rounds
+  double threshold = 0.0;             // initial inlier band tau; <= 0: 1% of the bbox diagonal
+  double normal_cos = 0.8;            // inlier normal agreement |cos| (used when normals exist)
+  double band_sigmas = 3.0;           // final inlier band in units of the estimated sigma
+  int max_rounds = 8;                 // refit / re-classify rounds
+  double stable_fraction = 0.002;     // inlier set "stable" when at most this fraction changed
+  int min_inliers = 20;               // fewer: the fit fails (from points alone: k + 1)
+  double min_inlier_fraction = 0.02;  // fewer than this fraction of the points: the fit fails
+  int num_threads = 0;                // Ceres threads; 0 = hardware concurrency
+  bool compute_covariance = true;     // parameter standard deviations
   std::map<std::string, std::vector<double>> fixed;  // field name -> value kept constant
-  Estimator estimator = Estimator::kRobust;  // final criterion (fit/estimator.h)
-  std::vector<double> initial;           // non-empty: no hypotheses, refine from these parameters
+  Estimator estimator = Estimator::kRobust;          // final criterion (fit/estimator.h)
+  std::vector<double> initial;  // non-empty: no hypotheses, refine from these parameters
 
   // False (with a reason) for an invalid combination.
   bool IsValid(std::string* error) const;
@@ -64,21 +64,21 @@ struct PrimitiveFitOptions {
 
 struct PrimitiveFitResult {
   bool success = false;
-  std::string message;                   // why it failed, or the solver's termination
-  std::vector<double> parameters;        // flat layout of the model evaluator (model/*.h)
+  std::string message;                      // why it failed, or the solver's termination
+  std::vector<double> parameters;           // flat layout of the model evaluator (model/*.h)
   std::vector<double> standard_deviations;  // same layout; empty when not computed
-  std::vector<int> inliers;              // indices into the input cloud
-  double sigma = 0.0;                    // estimated noise scale (1.4826 MAD)
-  double rms = 0.0, max_abs = 0.0;       // of the inliers' distances
-  double mean_normal_angle_deg = -1.0;   // mean angle between grad f and the inliers' normals
-  int iterations = 0;                    // Ceres iterations, all rounds
+  std::vector<int> inliers;                 // indices into the input cloud
+  double sigma = 0.0;                       // estimated noise scale (1.4826 MAD)
+  double rms = 0.0, max_abs = 0.0;          // of the inliers' distances
+  double mean_normal_angle_deg = -1.0;      // mean angle between grad f and the inliers' normals
+  int iterations = 0;                       // Ceres iterations, all rounds
   int rounds = 0;
   double seconds = 0.0;
-  bool points_only = false;              // hypotheses from points alone (no normals given)
+  bool points_only = false;                  // hypotheses from points alone (no normals given)
   Estimator estimator = Estimator::kRobust;  // which estimator produced `parameters`
-  FormFigures form;                      // every point's distances to the result
-  double final_step = 0.0;               // least-squares: last Gauss-Newton step length
-  MinimumZoneResult zone;                // minimum-zone: width, contacts, multipliers
+  FormFigures form;                          // every point's distances to the result
+  double final_step = 0.0;                   // least-squares: last Gauss-Newton step length
+  MinimumZoneResult zone;                    // minimum-zone: width, contacts, multipliers
 
   // The fitted primitive as a one-node model.
   Model ToModel(NodeType kind) const;

@@ -189,7 +189,8 @@ struct PrimitiveDistance<TorusEvaluator> {
   static constexpr int kNumParameters = 8;
   double c[3], major, minor;
   primitive_distance_internal::Axis axis;
-  explicit PrimitiveDistance(const double* p) : c{p[0], p[1], p[2]}, major(p[6]), minor(p[7]), axis(p + 3) {}
+  explicit PrimitiveDistance(const double* p)
+      : c{p[0], p[1], p[2]}, major(p[6]), minor(p[7]), axis(p + 3) {}
   double operator()(const double* x, double* dp, double* dx) const {
     double d[3], e[3], rho;
     const double h = axis.Split(x, c, d, &rho, e);

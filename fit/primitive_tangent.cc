@@ -18,12 +18,18 @@ void Orthonormal(const Eigen::Vector3d& u, Eigen::Vector3d* a, Eigen::Vector3d* 
 
 int FreeParameterCount(NodeType kind) {
   switch (kind) {
-    case NodeType::kPlane: return 3;
-    case NodeType::kSphere: return 4;
-    case NodeType::kCylinder: return 5;
-    case NodeType::kCone: return 6;
-    case NodeType::kTorus: return 7;
-    default: return 0;
+    case NodeType::kPlane:
+      return 3;
+    case NodeType::kSphere:
+      return 4;
+    case NodeType::kCylinder:
+      return 5;
+    case NodeType::kCone:
+      return 6;
+    case NodeType::kTorus:
+      return 7;
+    default:
+      return 0;
   }
 }
 
@@ -80,12 +86,18 @@ void Retract(NodeType kind, const Eigen::MatrixXd& basis, const Eigen::VectorXd&
 
 double PrimitiveSignedDistance(NodeType kind, const double* p, const double* x, double* dp) {
   switch (kind) {
-    case NodeType::kPlane: return PrimitiveDistance<PlaneEvaluator>(p)(x, dp, nullptr);
-    case NodeType::kSphere: return PrimitiveDistance<SphereEvaluator>(p)(x, dp, nullptr);
-    case NodeType::kCylinder: return PrimitiveDistance<CylinderEvaluator>(p)(x, dp, nullptr);
-    case NodeType::kCone: return PrimitiveDistance<ConeEvaluator>(p)(x, dp, nullptr);
-    case NodeType::kTorus: return PrimitiveDistance<TorusEvaluator>(p)(x, dp, nullptr);
-    default: return NAN;
+    case NodeType::kPlane:
+      return PrimitiveDistance<PlaneEvaluator>(p)(x, dp, nullptr);
+    case NodeType::kSphere:
+      return PrimitiveDistance<SphereEvaluator>(p)(x, dp, nullptr);
+    case NodeType::kCylinder:
+      return PrimitiveDistance<CylinderEvaluator>(p)(x, dp, nullptr);
+    case NodeType::kCone:
+      return PrimitiveDistance<ConeEvaluator>(p)(x, dp, nullptr);
+    case NodeType::kTorus:
+      return PrimitiveDistance<TorusEvaluator>(p)(x, dp, nullptr);
+    default:
+      return NAN;
   }
 }
 

@@ -6,19 +6,23 @@
 
 namespace implicitfit {
 
-SegmentationMetrics CompareSegmentations(const std::vector<int>& truth, const std::vector<NodeType>& truth_kinds,
+SegmentationMetrics CompareSegmentations(const std::vector<int>& truth,
+                                         const std::vector<NodeType>& truth_kinds,
                                          const std::vector<int>& detected,
-                                         const std::vector<NodeType>& detected_kinds, double min_fraction) {
+                                         const std::vector<NodeType>& detected_kinds,
+                                         double min_fraction) {
   if (truth.size() != detected.size())
-    throw std::invalid_argument("CompareSegmentations: " + std::to_string(truth.size()) + " truth labels, " +
-                                std::to_string(detected.size()) + " detected labels");
+    throw std::invalid_argument("CompareSegmentations: " + std::to_string(truth.size()) +
+                                " truth labels, " + std::to_string(detected.size()) +
+                                " detected labels");
   const int G = static_cast<int>(truth_kinds.size()), D = static_cast<int>(detected_kinds.size());
   std::vector<long> g_size(G, 0), d_size(D, 0);
   std::map<std::pair<int, int>, long> overlap;
   long labelled = 0, covered = 0;
   for (size_t i = 0; i < truth.size(); ++i) {
     const int g = truth[i], d = detected[i];
-    if (g < -1 || g >= G || d < -1 || d >= D) throw std::invalid_argument("CompareSegmentations: label out of range");
+    if (g < -1 || g >= G || d < -1 || d >= D)
+      throw std::invalid_argument("CompareSegmentations: label out of range");
     if (g >= 0) ++g_size[g], ++labelled;
     if (d >= 0) ++d_size[d];
     if (g >= 0 && d >= 0) ++overlap[{g, d}], ++covered;

@@ -21,12 +21,12 @@ namespace implicitfit {
 
 struct SegmentationMetrics {
   int truth_counted = 0, detected_counted = 0;
-  int recovered = 0;           // counted ground truth matched (IoU >= 0.5, same kind)
-  int precise = 0;             // counted detections matched
-  int segmented = 0;           // counted ground truth with IoU(g, match(g)) >= 0.5
+  int recovered = 0;  // counted ground truth matched (IoU >= 0.5, same kind)
+  int precise = 0;    // counted detections matched
+  int segmented = 0;  // counted ground truth with IoU(g, match(g)) >= 0.5
   double recall = 0.0, precision = 0.0, mean_iou = 0.0, kind_accuracy = 0.0, coverage = 0.0;
-  std::vector<int> match;      // per ground-truth primitive: match(g) or -1
-  std::vector<double> iou;     // per ground-truth primitive: IoU(g, match(g))
+  std::vector<int> match;   // per ground-truth primitive: match(g) or -1
+  std::vector<double> iou;  // per ground-truth primitive: IoU(g, match(g))
 };
 
 // Throws std::invalid_argument when the label vectors differ in length or a label is out of range.

@@ -11,8 +11,8 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
-PrimitiveFitResult RobustFit(NodeType kind, const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                             unsigned seed) {
+PrimitiveFitResult RobustFit(NodeType kind, const std::vector<Vec>& points,
+                             const std::vector<Vec>& normals, unsigned seed) {
   PrimitiveFitOptions options;
   options.kind = kind;
   options.seed = seed;
@@ -31,7 +31,8 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-ShapeStart ParaboloidStart(const std::vector<Vec>& points, const std::vector<Vec>& normals, unsigned seed) {
+ShapeStart ParaboloidStart(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                           unsigned seed) {
   const PrimitiveFitResult sphere = RobustFit(NodeType::kSphere, points, normals, seed);
   if (!sphere.success) return Failed("no osculating sphere for the start: " + sphere.message);
   const Vec c(sphere.parameters[0], sphere.parameters[1], sphere.parameters[2]);
@@ -49,12 +50,14 @@ ShapeStart ParaboloidStart(const std::vector<Vec>& points, const std::vector<Vec
   double kappa = 1.0 / radius;
   if (outward < 0) dir = -dir, kappa = -kappa;  // normals point to the centre: concave
   ShapeStart s;
-  s.model.AddPrimitive(NodeType::kParaboloid, {vertex.x(), vertex.y(), vertex.z(), dir.x(), dir.y(), dir.z(), kappa});
+  s.model.AddPrimitive(NodeType::kParaboloid,
+                       {vertex.x(), vertex.y(), vertex.z(), dir.x(), dir.y(), dir.z(), kappa});
   s.success = true;
   return s;
 }
 
-ShapeStart CapsuleStart(const std::vector<Vec>& points, const std::vector<Vec>& normals, unsigned seed) {
+ShapeStart CapsuleStart(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                        unsigned seed) {
   const PrimitiveFitResult cylinder = RobustFit(NodeType::kCylinder, points, normals, seed);
   if (!cylinder.success) return Failed("no cylinder for the start: " + cylinder.message);
   const std::vector<double>& p = cylinder.parameters;
@@ -67,19 +70,22 @@ ShapeStart CapsuleStart(const std::vector<Vec>& points, const std::vector<Vec>& 
   }
   const Vec a = origin + lo * axis, b = origin + hi * axis;
   ShapeStart s;
-  s.model.AddSkeletonOffset(SkeletonKind::kSegments, {a.x(), a.y(), a.z(), b.x(), b.y(), b.z()}, p[6]);
+  s.model.AddSkeletonOffset(SkeletonKind::kSegments, {a.x(), a.y(), a.z(), b.x(), b.y(), b.z()},
+                            p[6]);
   s.success = true;
   return s;
 }
 
-ShapeStart BoxStart(const std::vector<Vec>& points, const std::vector<Vec>& normals, unsigned seed) {
+ShapeStart BoxStart(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                    unsigned seed) {
   if (normals.size() != points.size()) return Failed("the box start needs normals");
   const PrimitiveFitResult first = RobustFit(NodeType::kPlane, points, normals, seed);
   if (!first.success) return Failed("no first face: " + first.message);
   const Vec e1 = Vec(first.parameters[0], first.parameters[1], first.parameters[2]).normalized();
   std::vector<Vec> side_points, side_normals;
   for (size_t i = 0; i < points.size(); ++i)
-    if (std::abs(normals[i].dot(e1)) < 0.3) side_points.push_back(points[i]), side_normals.push_back(normals[i]);
+    if (std::abs(normals[i].dot(e1)) < 0.3)
+      side_points.push_back(points[i]), side_normals.push_back(normals[i]);
   if (side_points.size() < 10) return Failed("no points on faces perpendicular to the first");
   const PrimitiveFitResult second = RobustFit(NodeType::kPlane, side_points, side_normals, seed);
   if (!second.success) return Failed("no second face: " + second.message);
@@ -92,11 +98,15 @@ ShapeStart BoxStart(const std::vector<Vec>& points, const std::vector<Vec>& norm
     std::vector<double> plus, minus, all;
     for (size_t i = 0; i < points.size(); ++i) {
       const double along = normals[i].dot(axes[k]), s = points[i].dot(axes[k]);
-      if (along > 0.9) plus.push_back(s);
-      else if (along < -0.9) minus.push_back(s);
-      else all.push_back(s);
+      if (along > 0.9)
+        plus.push_back(s);
+      else if (along < -0.9)
+        minus.push_back(s);
+      else
+        all.push_back(s);
     }
-    if (all.empty() && (plus.empty() || minus.empty())) return Failed("too few faces seen to bound the box");
+    if (all.empty() && (plus.empty() || minus.empty()))
+      return Failed("too few faces seen to bound the box");
     std::sort(all.begin(), all.end());
     // A face not seen: the extent of the other faces' points (5% trimmed against outliers).
     const double hi = plus.empty() ? all[all.size() * 95 / 100] : Median(plus);
@@ -110,7 +120,8 @@ ShapeStart BoxStart(const std::vector<Vec>& points, const std::vector<Vec>& norm
   const Vec c = r * centre;  // centre was in the (e1, e2, e3) coordinates
   const Eigen::Quaterniond q(r);
   ShapeStart s;
-  s.model.AddPrimitive(NodeType::kBox, {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(), half.x(), half.y(), half.z()});
+  s.model.AddPrimitive(NodeType::kBox, {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(), half.x(),
+                                        half.y(), half.z()});
   s.success = true;
   return s;
 }

@@ -25,10 +25,11 @@ int CopyNode(const Model& src, int index, Model* dst) {
     for (int c : node.children) children.push_back(CopyNode(src, c, dst));
     copied = dst->AddOperator(node.type, children, p[0], p[1], node.order, node.name);
   } else if (node.type == NodeType::kBernsteinPatch) {
-    copied = dst->AddBernsteinPatch(node.degree, node.tetrahedron, std::vector<double>(p, p + node.num_parameters),
-                                    node.name);
+    copied = dst->AddBernsteinPatch(node.degree, node.tetrahedron,
+                                    std::vector<double>(p, p + node.num_parameters), node.name);
   } else {
-    copied = dst->AddPrimitive(node.type, std::vector<double>(p, p + node.num_parameters), node.name);
+    copied =
+        dst->AddPrimitive(node.type, std::vector<double>(p, p + node.num_parameters), node.name);
   }
   dst->mutable_nodes()[copied].fixed = node.fixed;
   return copied;
@@ -58,7 +59,8 @@ double ImpliedFilletRadius(double delta, double crease_angle_rad) {
   return delta / (4.0 * (1.0 - std::cos(0.5 * crease_angle_rad)));
 }
 
-SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
+                                     const std::vector<Vec>& normals,
                                      const std::vector<SolidPrimitive>& primitives,
                                      const SolidReconstructionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -131,7 +133,8 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
   for (size_t i = 0; i < N; ++i)
     if (label[i] >= 0) assigned_points.push_back(i);
   std::shuffle(assigned_points.begin(), assigned_points.end(), rng);
-  if (static_cast<int>(assigned_points.size()) > options.max_samples) assigned_points.resize(options.max_samples);
+  if (static_cast<int>(assigned_points.size()) > options.max_samples)
+    assigned_points.resize(options.max_samples);
   auto signs_at = [&](const Vec& x) {
     std::uint64_t s = 0;
     for (int k = 0; k < K; ++k)
@@ -161,7 +164,8 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
   for (const Vec& x : shell) samples.push_back({signs_at(x), false});
   const CsgSeparation sep = SeparateCells(samples, K);
   std::vector<std::string> names;
-  for (int k = 0; k < K; ++k) names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
+  for (int k = 0; k < K; ++k)
+    names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
   out.expression = CsgExpressionText(sep.terms, names);
 
   // The sharp tree: union of difference(intersection(positives), negatives).
@@ -175,7 +179,9 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
       if (term.outside >> k & 1) neg.push_back(CopyNode(prim[k], prim[k].root(), &m));
     }
     if (pos.empty()) continue;  // unbounded (only complements): cannot be part of a solid
-    int node = pos.size() == 1 ? pos[0] : m.AddOperator(NodeType::kIntersection, pos, placeholder, placeholder, 0);
+    int node = pos.size() == 1
+                   ? pos[0]
+                   : m.AddOperator(NodeType::kIntersection, pos, placeholder, placeholder, 0);
     if (!neg.empty()) {
       std::vector<int> children = {node};
       children.insert(children.end(), neg.begin(), neg.end());
@@ -188,8 +194,9 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
                   std::to_string(sep.inside_cells) + " inside cells)";
     return out;
   }
-  m.SetRoot(term_nodes.size() == 1 ? term_nodes[0]
-                                   : m.AddOperator(NodeType::kUnion, term_nodes, placeholder, placeholder, 0));
+  m.SetRoot(term_nodes.size() == 1
+                ? term_nodes[0]
+                : m.AddOperator(NodeType::kUnion, term_nodes, placeholder, placeholder, 0));
   for (ModelNode& node : m.mutable_nodes())
     if (IsOperator(node.type)) node.fixed = {"delta", "epsilon"};
 
@@ -236,16 +243,19 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
         between = between && gn > 0 && c > 0.0 && c < 0.98;
       }
       if (!between) continue;
-      const double d = std::pow(std::sqrt(std::max(0.0, -best[0])) + std::sqrt(std::max(0.0, -best[1])), 2);
+      const double d =
+          std::pow(std::sqrt(std::max(0.0, -best[0])) + std::sqrt(std::max(0.0, -best[1])), 2);
       if (d < 2 * tau_all || d > 4 * R) continue;
       // The blend's normal at that position (parabolic zone): grad S_max(a, b) is proportional
       // to (1 + (a - b) / delta) grad a + (1 - (a - b) / delta) grad b; the point's normal must
       // be within 20 degrees of it (random normals of outliers rarely are).
       const double mix = std::clamp((best[0] - best[1]) / d, -1.0, 1.0);
-      const Vec predicted = ((1 + mix) * grad[0].normalized() + (1 - mix) * grad[1].normalized()).normalized();
+      const Vec predicted =
+          ((1 + mix) * grad[0].normalized() + (1 - mix) * grad[1].normalized()).normalized();
       if (!(predicted.dot(normals[i]) > std::cos(20.0 * M_PI / 180.0))) continue;
       deltas[o].push_back(d);
-      angles[o].push_back(std::acos(std::clamp(grad[0].normalized().dot(grad[1].normalized()), -1.0, 1.0)));
+      angles[o].push_back(
+          std::acos(std::clamp(grad[0].normalized().dot(grad[1].normalized()), -1.0, 1.0)));
     }
   }
   const int min_points = std::max(options.min_transition_points,
@@ -312,15 +322,17 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points, const std::
   }
   out.success = out.bounded && out.normal_agreement >= 0.5;
   out.message = !out.bounded ? "the solid is not bounded (f <= 0 on the box around the cloud)"
-              : out.normal_agreement < 0.5 ? "grad f opposes the normals on most points"
-                                           : "ok";
+                : out.normal_agreement < 0.5 ? "grad f opposes the normals on most points"
+                                             : "ok";
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
-std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                                     const std::vector<int>& labels,
-                                                     const std::vector<NodeType>& kinds, unsigned seed) {
+std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points,
+                                                  const std::vector<Vec>& normals,
+                                                  const std::vector<int>& labels,
+                                                  const std::vector<NodeType>& kinds,
+                                                  unsigned seed) {
   std::vector<SolidPrimitive> primitives;
   for (size_t k = 0; k < kinds.size(); ++k) {
     std::vector<Vec> pts, nrm;
@@ -333,7 +345,8 @@ std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points
     options.kind = kinds[k];
     options.seed = seed;
     const PrimitiveFitResult fit = FitPrimitive(pts, nrm, options);
-    if (!fit.success) throw std::runtime_error("primitive " + std::to_string(k) + ": " + fit.message);
+    if (!fit.success)
+      throw std::runtime_error("primitive " + std::to_string(k) + ": " + fit.message);
     primitives.push_back({"p" + std::to_string(k), fit.ToModel(kinds[k]), fit.rms});
   }
   return primitives;

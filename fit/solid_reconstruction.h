@@ -34,41 +34,41 @@
 namespace implicitfit {
 
 struct SolidPrimitive {
-  std::string name;      // "p0", ...
-  Model model;           // the primitive as a model (usually one node)
-  double rms = 0.0;      // RMS distance of its points, 0 when unknown
+  std::string name;  // "p0", ...
+  Model model;       // the primitive as a model (usually one node)
+  double rms = 0.0;  // RMS distance of its points, 0 when unknown
 };
 
 struct SolidReconstructionOptions {
-  double max_fillet = 0.1;            // R: largest fillet considered, fraction of the diagonal
-  double offset = 0.01;               // t of the inside/outside samples, fraction of the diagonal
-  int min_transition_points = 20;     // a blend needs at least this many transition points
+  double max_fillet = 0.1;         // R: largest fillet considered, fraction of the diagonal
+  double offset = 0.01;            // t of the inside/outside samples, fraction of the diagonal
+  int min_transition_points = 20;  // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
-  int max_samples = 20000;            // inside/outside samples drawn from the assigned points
+  int max_samples = 20000;  // inside/outside samples drawn from the assigned points
   unsigned seed = 1;
   TreeFitOptions tree;
 };
 
 struct BlendEstimate {
-  std::string node;                   // the operator's label in the model
-  std::string type;                   // union, intersection, difference
+  std::string node;  // the operator's label in the model
+  std::string type;  // union, intersection, difference
   int transition_points = 0;
   double delta = 0, epsilon = 0, sd_delta = 0, sd_epsilon = 0;
-  double crease_angle_deg = 0;        // phi, median over the transition points
+  double crease_angle_deg = 0;  // phi, median over the transition points
   double fillet_radius = 0, sd_fillet_radius = 0;
 };
 
 struct SolidReconstruction {
   bool success = false;
   std::string message;
-  Model model;                        // the fitted solid
-  std::string expression;             // e.g. "(p0 & p1 & !p2) | (p3)"
-  std::vector<std::string> sides;     // per primitive: "solid", "hole" or "unused"
-  std::vector<int> assigned;          // points per primitive
+  Model model;                     // the fitted solid
+  std::string expression;          // e.g. "(p0 & p1 & !p2) | (p3)"
+  std::vector<std::string> sides;  // per primitive: "solid", "hole" or "unused"
+  std::vector<int> assigned;       // points per primitive
   int unassigned = 0;
-  bool bounded = false;               // f > 0 on the shell around the cloud
-  double rms = 0.0;                   // RMS first-order distance of the fit's inliers
+  bool bounded = false;  // f > 0 on the shell around the cloud
+  double rms = 0.0;      // RMS first-order distance of the fit's inliers
   double sigma = 0.0;
   int inliers = 0;
   double normal_agreement = 0.0;      // share of inliers with n . grad f > 0
@@ -85,9 +85,10 @@ SolidReconstruction ReconstructSolid(const std::vector<Eigen::Vector3d>& points,
 // fitted with the primitive fitter (fit/primitive_fitter.h) as kinds[k]: the scene that `detect`
 // would give, e.g. from ground-truth labels. Throws std::runtime_error naming a failed primitive.
 std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Eigen::Vector3d>& points,
-                                                     const std::vector<Eigen::Vector3d>& normals,
-                                                     const std::vector<int>& labels,
-                                                     const std::vector<NodeType>& kinds, unsigned seed);
+                                                  const std::vector<Eigen::Vector3d>& normals,
+                                                  const std::vector<int>& labels,
+                                                  const std::vector<NodeType>& kinds,
+                                                  unsigned seed);
 
 // The fillet radius of the header for a blend of parameter delta at a crease of angle phi.
 double ImpliedFilletRadius(double delta, double crease_angle_rad);

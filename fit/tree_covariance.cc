@@ -5,7 +5,8 @@
 
 namespace implicitfit {
 
-std::vector<double> TreeStandardDeviations(const Model& model, const std::vector<Eigen::Vector3d>& points) {
+std::vector<double> TreeStandardDeviations(const Model& model,
+                                           const std::vector<Eigen::Vector3d>& points) {
   const int P = static_cast<int>(model.parameters().size());
   const int N = static_cast<int>(points.size());
   std::vector<double> sd(P, 0.0);
@@ -42,7 +43,8 @@ std::vector<double> TreeStandardDeviations(const Model& model, const std::vector
       ++rank;
     }
   const double sigma2 = rss / std::max(1, N - rank);
-  const Eigen::MatrixXd cov = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+  const Eigen::MatrixXd cov =
+      eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
   for (int j = 0; j < P; ++j) sd[j] = std::sqrt(std::max(0.0, sigma2 * cov(j, j)));
   return sd;
 }

@@ -13,6 +13,7 @@
 
 namespace implicitfit {
 
-std::vector<double> TreeStandardDeviations(const Model& model, const std::vector<Eigen::Vector3d>& points);
+std::vector<double> TreeStandardDeviations(const Model& model,
+                                           const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace implicitfit

@@ -13,7 +13,8 @@
 namespace implicitfit {
 
 TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector3d>& points,
-                           const std::vector<Eigen::Vector3d>& normals, const TreeFitOptions& options) {
+                           const std::vector<Eigen::Vector3d>& normals,
+                           const TreeFitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   TreeFitResult result;
   result.model = initial;
@@ -54,9 +55,13 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   for (int pass = 0; pass < 2; ++pass) {
     ceres::Problem problem;
     for (size_t i = 0; i < n_points; ++i) {
-      auto* functor = new TreePointResidual{&result.model, &parameters,
+      auto* functor = new TreePointResidual{&result.model,
+                                            &parameters,
                                             {points[i].x(), points[i].y(), points[i].z()},
-                                            {0, 0, 0}, has_normals, options.normal_weight, h};
+                                            {0, 0, 0},
+                                            has_normals,
+                                            options.normal_weight,
+                                            h};
       if (has_normals)
         for (int k = 0; k < 3; ++k) functor->n[k] = normals[i][k];
       auto* cost = new ceres::DynamicAutoDiffCostFunction<TreePointResidual, 8>(functor);

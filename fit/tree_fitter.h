@@ -18,17 +18,17 @@
 namespace implicitfit {
 
 struct TreeFitOptions {
-  double normal_weight = 0.1;   // w of the normal residuals (units of distance per unit vector)
-  int max_iterations = 200;     // Ceres iterations per pass
-  int num_threads = 0;          // 0 = hardware concurrency
+  double normal_weight = 0.1;  // w of the normal residuals (units of distance per unit vector)
+  int max_iterations = 200;    // Ceres iterations per pass
+  int num_threads = 0;         // 0 = hardware concurrency
 };
 
 struct TreeFitResult {
   bool success = false;
   std::string message;
-  Model model;                  // the fitted tree (same structure as the initial one)
-  double rms = 0.0;             // RMS geometric distance of the inliers (|r_0| < 3 sigma)
-  double sigma = 0.0;           // robust noise scale
+  Model model;         // the fitted tree (same structure as the initial one)
+  double rms = 0.0;    // RMS geometric distance of the inliers (|r_0| < 3 sigma)
+  double sigma = 0.0;  // robust noise scale
   int inliers = 0;
   double mean_normal_angle_deg = -1.0;
   int iterations = 0;
@@ -36,6 +36,7 @@ struct TreeFitResult {
 };
 
 TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector3d>& points,
-                           const std::vector<Eigen::Vector3d>& normals, const TreeFitOptions& options);
+                           const std::vector<Eigen::Vector3d>& normals,
+                           const TreeFitOptions& options);
 
 }  // namespace implicitfit

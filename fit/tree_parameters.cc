@@ -88,8 +88,12 @@ void TreeParameters::Configure(ceres::Problem* problem) {
     double* block = blocks_[b].data();
     if (!problem->HasParameterBlock(block)) continue;
     switch (block_kinds_[b]) {
-      case Kind::kDirection: problem->SetManifold(block, new ceres::SphereManifold<3>()); break;
-      case Kind::kQuaternion: problem->SetManifold(block, new ceres::QuaternionManifold()); break;
+      case Kind::kDirection:
+        problem->SetManifold(block, new ceres::SphereManifold<3>());
+        break;
+      case Kind::kQuaternion:
+        problem->SetManifold(block, new ceres::QuaternionManifold());
+        break;
       case Kind::kPositive:
         for (int j = 0; j < block_sizes_[b]; ++j) problem->SetParameterLowerBound(block, j, 1e-12);
         break;
@@ -97,7 +101,8 @@ void TreeParameters::Configure(ceres::Problem* problem) {
         problem->SetParameterLowerBound(block, 0, 1e-6);
         problem->SetParameterUpperBound(block, 0, M_PI / 2 - 1e-6);
         break;
-      default: break;
+      default:
+        break;
     }
   }
 }

@@ -54,14 +54,22 @@ class TreeParameters {
 
  private:
   enum class Kind {
-    kPlain, kDirection, kPositive, kAngle, kDeltaLog, kEpsilonLogit, kQuaternion, kUnitLogit, kLog
+    kPlain,
+    kDirection,
+    kPositive,
+    kAngle,
+    kDeltaLog,
+    kEpsilonLogit,
+    kQuaternion,
+    kUnitLogit,
+    kLog
   };
-  struct Entry {  // one flat parameter
-    int block = -1, offset = 0;   // -1: fixed
+  struct Entry {                 // one flat parameter
+    int block = -1, offset = 0;  // -1: fixed
     double fixed_value = 0.0;
     Kind kind = Kind::kPlain;
-    int delta_flat = -1;          // kEpsilonLogit / kDeltaLog with fixed epsilon: the partner
-    double scale = 1.0;           // kUnitLogit: the value = scale / (1 + exp(-b))
+    int delta_flat = -1;  // kEpsilonLogit / kDeltaLog with fixed epsilon: the partner
+    double scale = 1.0;   // kUnitLogit: the value = scale / (1 + exp(-b))
   };
   std::vector<Entry> entries_;
   std::vector<std::vector<double>> blocks_;

@@ -26,7 +26,8 @@ struct CartesianQuadric {
 };
 
 // Control points (DESIGN.md order) of q on tet, at degree k >= 2 (elevated from 2).
-std::vector<double> QuadricToBernstein(const CartesianQuadric& q, const Tetrahedron& tet, int k = 2);
+std::vector<double> QuadricToBernstein(const CartesianQuadric& q, const Tetrahedron& tet,
+                                       int k = 2);
 // The quadric of a degree-2 patch (10 control points).
 CartesianQuadric BernsteinToQuadric(const double* control_points, const Tetrahedron& tet);
 // The same polynomial at degree k + 1.

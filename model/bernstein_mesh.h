@@ -37,7 +37,7 @@ constexpr int kKuhnPermutations[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
 
 struct BernsteinGrid {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double cell = 1.0;                   // cube edge h > 0
+  double cell = 1.0;                     // cube edge h > 0
   std::array<int, 3> cells = {1, 1, 1};  // nx, ny, nz >= 1
 
   long long NumCubes() const { return 1LL * cells[0] * cells[1] * cells[2]; }
@@ -86,8 +86,8 @@ class BernsteinMesh {
   static T Evaluate(int k, const BernsteinGrid& grid, const T* control_points, const T* x) {
     T tau[4];
     const long long t = grid.Locate(x, tau);
-    return BernsteinPatch::EvaluateBarycentric(
-        k, control_points + t * NumBernsteinControlPoints(k), tau);
+    return BernsteinPatch::EvaluateBarycentric(k, control_points + t * NumBernsteinControlPoints(k),
+                                               tau);
   }
 };
 

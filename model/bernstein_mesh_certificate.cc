@@ -27,8 +27,7 @@ MeshConvexityCertificate CertifyMeshConvexity(int k, const BernsteinGrid& grid, 
   }
   out.c1_defect = ContinuityDefect(grid, k, 1, b);
   out.c1 = out.c1_defect <= kMaxContinuityDefect;
-  out.convex_on_box =
-      out.domain_convex && out.c1 && out.certified_tetrahedra == out.tetrahedra;
+  out.convex_on_box = out.domain_convex && out.c1 && out.certified_tetrahedra == out.tetrahedra;
   return out;
 }
 
@@ -42,7 +41,9 @@ MeshSamplingResult MeshTangentPlaneTest(int k, const BernsteinGrid& grid, const 
     return Eigen::Vector3d(lo[0] + u(rng) * (hi[0] - lo[0]), lo[1] + u(rng) * (hi[1] - lo[1]),
                            lo[2] + u(rng) * (hi[2] - lo[2]));
   };
-  auto value = [&](const Eigen::Vector3d& x) { return BernsteinMesh::Evaluate(k, grid, b, x.data()); };
+  auto value = [&](const Eigen::Vector3d& x) {
+    return BernsteinMesh::Evaluate(k, grid, b, x.data());
+  };
   // The gradient of the tetrahedron holding p (segments cross tetrahedra: the whole box is tested).
   auto gradient = [&](const Eigen::Vector3d& p) {
     double tau[4];

@@ -34,12 +34,12 @@ constexpr double kMaxContinuityDefect = 1e-9;
 struct MeshConvexityCertificate {
   long long tetrahedra = 0;
   long long certified_tetrahedra = 0;
-  double min_eigenvalue = 0.0;        // smallest A^mu eigenvalue over all tetrahedra
-  long long worst_tetrahedron = -1;   // where it is attained
-  double c1_defect = 0.0;             // max |C b| / max |b|, C0 + C1 rows
-  bool c1 = false;                    // c1_defect <= kMaxContinuityDefect
-  bool domain_convex = true;          // a box grid is convex
-  bool convex_on_box = false;         // all of the above
+  double min_eigenvalue = 0.0;       // smallest A^mu eigenvalue over all tetrahedra
+  long long worst_tetrahedron = -1;  // where it is attained
+  double c1_defect = 0.0;            // max |C b| / max |b|, C0 + C1 rows
+  bool c1 = false;                   // c1_defect <= kMaxContinuityDefect
+  bool domain_convex = true;         // a box grid is convex
+  bool convex_on_box = false;        // all of the above
   std::vector<ConvexityCertificate> per_tetrahedron;
 };
 

@@ -103,8 +103,8 @@ ContinuityRows BernsteinContinuityRows(const BernsteinGrid& grid, int k, int min
       for (const auto& nu : BernsteinMultiIndices(j)) {
         const double c = Bernstein(j, nu, alpha);
         if (c == 0.0) continue;
-        triplets.emplace_back(row, t * n + BernsteinIndex(lam[1] + nu[1], lam[2] + nu[2], lam[3] + nu[3]),
-                              -c);
+        triplets.emplace_back(
+            row, t * n + BernsteinIndex(lam[1] + nu[1], lam[2] + nu[2], lam[3] + nu[3]), -c);
       }
       out.tetrahedra.emplace_back(u, t);
       out.order.push_back(j);
@@ -117,7 +117,8 @@ ContinuityRows BernsteinContinuityRows(const BernsteinGrid& grid, int k, int min
 }
 
 long long NumDomainPoints(const BernsteinGrid& grid, int k) {
-  return (1LL * k * grid.cells[0] + 1) * (1LL * k * grid.cells[1] + 1) * (1LL * k * grid.cells[2] + 1);
+  return (1LL * k * grid.cells[0] + 1) * (1LL * k * grid.cells[1] + 1) *
+         (1LL * k * grid.cells[2] + 1);
 }
 
 std::vector<long long> DomainPointIndices(const BernsteinGrid& grid, int k) {

@@ -63,8 +63,8 @@ int ReadBernsteinMeshNode(const json& node, const std::string& path, const std::
     if (!c.is_number_integer() || c.get<long long>() < 1) Fail(where, "must be an integer >= 1");
     const long long n = c.get<long long>();
     if (n > kMaxMeshControlPoints || count * n > kMaxMeshControlPoints)
-      Fail(gp + ".cells", "the mesh would exceed " + std::to_string(kMaxMeshControlPoints) +
-                              " control points");
+      Fail(gp + ".cells",
+           "the mesh would exceed " + std::to_string(kMaxMeshControlPoints) + " control points");
     count *= n;
     grid.cells[a] = static_cast<int>(n);
   }
@@ -72,9 +72,11 @@ int ReadBernsteinMeshNode(const json& node, const std::string& path, const std::
   if (!node.contains("control_points")) Fail(cp, "missing");
   const json& v = node.at("control_points");
   if (!v.is_array() || static_cast<long long>(v.size()) != count)
-    Fail(cp, "must be an array of " + std::to_string(count) + " numbers (6 nx ny nz (k+1)(k+2)(k+3)/6)");
+    Fail(cp, "must be an array of " + std::to_string(count) +
+                 " numbers (6 nx ny nz (k+1)(k+2)(k+3)/6)");
   std::vector<double> b(static_cast<size_t>(count));
-  for (size_t i = 0; i < b.size(); ++i) b[i] = FiniteNumber(v[i], cp + "[" + std::to_string(i) + "]");
+  for (size_t i = 0; i < b.size(); ++i)
+    b[i] = FiniteNumber(v[i], cp + "[" + std::to_string(i) + "]");
   return model->AddBernsteinMesh(static_cast<int>(k), grid, static_cast<int>(continuity), b, name);
 }
 

@@ -48,7 +48,8 @@ Eigen::Matrix<double, 4, 3> Tetrahedron::BarycentricJacobian() const {
 
 void Tetrahedron::Init() {
   for (double c : v_)
-    if (!std::isfinite(c)) throw std::invalid_argument("tetrahedron: vertex coordinates must be finite");
+    if (!std::isfinite(c))
+      throw std::invalid_argument("tetrahedron: vertex coordinates must be finite");
   double longest = 0.0;
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (vertex(i) - vertex(j)).norm());

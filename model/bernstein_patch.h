@@ -2,9 +2,10 @@
 //
 // Maths. The tetrahedron has vertices x1, x2, x3, x4; a point x has barycentric coordinates
 // tau = (tau1, tau2, tau3, tau4), sum tau_i = 1, x = sum tau_i x_i. With the edge matrix
-// E = [x1 - x4, x2 - x4, x3 - x4]:  (tau1, tau2, tau3) = E^-1 (x - x4),  tau4 = 1 - tau1 - tau2 - tau3
-// (negative outside the tetrahedron; the polynomial is evaluated everywhere). The patch is
-//   f(x) = sum_{|lambda| = k} b_lambda B^k_lambda(tau),  B^k_lambda = k!/(lambda1!..lambda4!) tau^lambda.
+// E = [x1 - x4, x2 - x4, x3 - x4]:  (tau1, tau2, tau3) = E^-1 (x - x4),  tau4 = 1 - tau1 - tau2 -
+// tau3 (negative outside the tetrahedron; the polynomial is evaluated everywhere). The patch is
+//   f(x) = sum_{|lambda| = k} b_lambda B^k_lambda(tau),  B^k_lambda = k!/(lambda1!..lambda4!)
+//   tau^lambda.
 // Control points b_lambda are listed in DESIGN.md order (multi-indices lexicographically
 // descending); the position of lambda in that list does not depend on k:
 //   index(lambda) = C(s1 + 2, 3) + C(s2 + 1, 2) + s3,  s1 = l2+l3+l4, s2 = l3+l4, s3 = l4,
@@ -52,7 +53,9 @@ class Tetrahedron {
   // From 12 numbers x1 x2 x3 x4.
   static Tetrahedron FromArray(const double* v);
 
-  Eigen::Vector3d vertex(int i) const { return Eigen::Vector3d(v_[3 * i], v_[3 * i + 1], v_[3 * i + 2]); }
+  Eigen::Vector3d vertex(int i) const {
+    return Eigen::Vector3d(v_[3 * i], v_[3 * i + 1], v_[3 * i + 2]);
+  }
   // 6V / L^3 (1/sqrt(2) for a regular tetrahedron).
   double relative_volume() const { return relative_volume_; }
   // Edge matrix E = [x1 - x4, x2 - x4, x3 - x4] and D = d tau / dx (4 x 3).
@@ -62,14 +65,15 @@ class Tetrahedron {
   template <typename T>
   void Barycentric(const T* x, T* tau) const {
     const T d[3] = {x[0] - v_[9], x[1] - v_[10], x[2] - v_[11]};
-    for (int i = 0; i < 3; ++i) tau[i] = inv_[3 * i] * d[0] + inv_[3 * i + 1] * d[1] + inv_[3 * i + 2] * d[2];
+    for (int i = 0; i < 3; ++i)
+      tau[i] = inv_[3 * i] * d[0] + inv_[3 * i + 1] * d[1] + inv_[3 * i + 2] * d[2];
     tau[3] = 1.0 - tau[0] - tau[1] - tau[2];
   }
 
  private:
   void Init();
-  std::array<double, 12> v_;    // x1 x2 x3 x4
-  std::array<double, 9> inv_;   // E^-1, row-major
+  std::array<double, 12> v_;   // x1 x2 x3 x4
+  std::array<double, 9> inv_;  // E^-1, row-major
   double relative_volume_ = 0.0;
 };
 
@@ -84,7 +88,8 @@ void DeCasteljauStep(int r, const T* tau, T* b) {
         const int l3 = s2 - l4, l2 = s1 - s2;
         const int j = BernsteinIndex(l2, l3, l4);
         b[j] = tau[0] * b[j] + tau[1] * b[BernsteinIndex(l2 + 1, l3, l4)] +
-               tau[2] * b[BernsteinIndex(l2, l3 + 1, l4)] + tau[3] * b[BernsteinIndex(l2, l3, l4 + 1)];
+               tau[2] * b[BernsteinIndex(l2, l3 + 1, l4)] +
+               tau[3] * b[BernsteinIndex(l2, l3, l4 + 1)];
       }
 }
 
@@ -132,7 +137,8 @@ class BernsteinPatch {
   // f, grad f (Cartesian) and, if hessian != nullptr, the Cartesian Hessian.
   template <typename T>
   static T Derivatives(int k, const Tetrahedron& tet, const T* control_points, const T* x,
-                       Eigen::Matrix<T, 3, 1>* gradient, Eigen::Matrix<T, 3, 3>* hessian = nullptr) {
+                       Eigen::Matrix<T, 3, 1>* gradient,
+                       Eigen::Matrix<T, 3, 3>* hessian = nullptr) {
     T tau[4];
     tet.Barycentric(x, tau);
     const Eigen::Matrix<double, 4, 3> D = tet.BarycentricJacobian();

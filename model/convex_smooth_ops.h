@@ -7,8 +7,8 @@
 // Properties: S^c_abs'' = 2 mu_w' >= 0 (convex), S^c_abs' = 2 mu_w - 1 in [-1, 1] (1-Lipschitz),
 // S^c_abs(t) = |t| for |t| >= w (the integral of H_n over [-1, 1] is 1 by symmetry), C^n, and a
 // piecewise polynomial of degree n + 1. Hence S^c_max is convex and nondecreasing in both
-// arguments, so a smooth intersection of convex functions is convex. S^c_abs(0) = (2w/n) E|S_n - n/2|
-// with S_n Irwin-Hall(n): w/2 for n = 1, 13w/48 for n = 3.
+// arguments, so a smooth intersection of convex functions is convex. S^c_abs(0) = (2w/n) E|S_n -
+// n/2| with S_n Irwin-Hall(n): w/2 for n = 1, 13w/48 for n = 3.
 //
 // Evaluation. With u = t / w in (-1, 1), s = n (u + 1) / 2, piece j = floor(s), v = s - j:
 //   integral_{-1}^{u} H_n = (2/n) (sum_{i<j} integral_0^1 P_i + integral_0^v P_j),

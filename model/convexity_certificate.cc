@@ -1,7 +1,7 @@
 #include "model/convexity_certificate.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 

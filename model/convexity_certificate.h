@@ -1,7 +1,8 @@
 // Convexity certificate of a Bernstein patch of degree k >= 2 (Guo §4, generalised; DESIGN.md).
 //
 // Maths. For every mu with |mu| = k - 2 the symmetric 3x3 matrix
-//   A^mu_ij = b(mu + e_i + e_j) + b(mu + 2 e_4) - b(mu + e_i + e_4) - b(mu + e_j + e_4),  i, j = 1..3
+//   A^mu_ij = b(mu + e_i + e_j) + b(mu + 2 e_4) - b(mu + e_i + e_4) - b(mu + e_j + e_4),  i, j
+//   = 1..3
 // (Guo eq. 7 without the factor k(k-1)). With sigma_4 = -(sigma_1 + sigma_2 + sigma_3) the
 // barycentric second derivative is sum_ij d2f/dtau_i dtau_j sigma_i sigma_j
 //   = k(k-1) sigma^T A(tau) sigma,  A(tau) = sum_mu B^{k-2}_mu(tau) A^mu,

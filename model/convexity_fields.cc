@@ -58,7 +58,8 @@ void AppendPatchCertificates(const Model& model, int index, nlohmann::ordered_js
   }
   nlohmann::ordered_json edges = nlohmann::ordered_json::array();
   for (const EdgeSignChanges& e : EdgeSignChangeCounts(k, b))
-    edges.push_back({{"vertices", {e.vertices[0], e.vertices[1]}}, {"sign_changes", e.sign_changes}});
+    edges.push_back(
+        {{"vertices", {e.vertices[0], e.vertices[1]}}, {"sign_changes", e.sign_changes}});
   (*patch)["edges"] = edges;
   nlohmann::ordered_json faces = nlohmann::ordered_json::array();
   for (const auto& f : FacesWithoutCrossing(k, b)) faces.push_back({f[0], f[1], f[2]});

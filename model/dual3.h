@@ -19,10 +19,25 @@ struct Dual3 {
   Dual3(double value) : a(value) {}  // NOLINT: implicit from constants, like ceres::Jet
   Dual3(double value, const Eigen::Vector3d& derivative) : a(value), v(derivative) {}
 
-  Dual3& operator+=(const Dual3& o) { a += o.a; v += o.v; return *this; }
-  Dual3& operator-=(const Dual3& o) { a -= o.a; v -= o.v; return *this; }
-  Dual3& operator*=(const Dual3& o) { v = v * o.a + a * o.v; a *= o.a; return *this; }
-  Dual3& operator/=(const Dual3& o) { *this = Dual3(a / o.a, (v - a / o.a * o.v) / o.a); return *this; }
+  Dual3& operator+=(const Dual3& o) {
+    a += o.a;
+    v += o.v;
+    return *this;
+  }
+  Dual3& operator-=(const Dual3& o) {
+    a -= o.a;
+    v -= o.v;
+    return *this;
+  }
+  Dual3& operator*=(const Dual3& o) {
+    v = v * o.a + a * o.v;
+    a *= o.a;
+    return *this;
+  }
+  Dual3& operator/=(const Dual3& o) {
+    *this = Dual3(a / o.a, (v - a / o.a * o.v) / o.a);
+    return *this;
+  }
 };
 
 inline Dual3 operator-(const Dual3& x) { return Dual3(-x.a, -x.v); }
@@ -30,9 +45,18 @@ inline Dual3 operator+(Dual3 x, const Dual3& y) { return x += y; }
 inline Dual3 operator-(Dual3 x, const Dual3& y) { return x -= y; }
 inline Dual3 operator*(Dual3 x, const Dual3& y) { return x *= y; }
 inline Dual3 operator/(Dual3 x, const Dual3& y) { return x /= y; }
-inline Dual3 operator+(Dual3 x, double y) { x.a += y; return x; }
-inline Dual3 operator+(double y, Dual3 x) { x.a += y; return x; }
-inline Dual3 operator-(Dual3 x, double y) { x.a -= y; return x; }
+inline Dual3 operator+(Dual3 x, double y) {
+  x.a += y;
+  return x;
+}
+inline Dual3 operator+(double y, Dual3 x) {
+  x.a += y;
+  return x;
+}
+inline Dual3 operator-(Dual3 x, double y) {
+  x.a -= y;
+  return x;
+}
 inline Dual3 operator-(double y, const Dual3& x) { return Dual3(y - x.a, -x.v); }
 inline Dual3 operator*(const Dual3& x, double y) { return Dual3(x.a * y, x.v * y); }
 inline Dual3 operator*(double y, const Dual3& x) { return Dual3(x.a * y, x.v * y); }

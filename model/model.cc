@@ -1,9 +1,9 @@
 #include "model/model.h"
 
-#include "model/dual3.h"
-
 #include <cmath>
 #include <stdexcept>
+
+#include "model/dual3.h"
 
 namespace implicitfit {
 namespace {
@@ -58,8 +58,10 @@ const std::vector<ParameterField>& ParameterFieldsOf(NodeType type) { return Inf
 std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
   std::vector<ParameterField> fields = ParameterFieldsOf(node.type);
   for (ParameterField& field : fields)
-    if (field.size == 0) field.size = node.num_parameters;  // the one per-node field
-    else if (field.size < 0) field.size *= -node.count;        // per element
+    if (field.size == 0)
+      field.size = node.num_parameters;  // the one per-node field
+    else if (field.size < 0)
+      field.size *= -node.count;  // per element
   return fields;
 }
 
@@ -197,10 +199,11 @@ int Model::AddBlobs(BlobKernel kernel, int order, const std::vector<double>& cen
 int Model::AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
                              std::string name) {
   const size_t m = points.size() / 3;
-  if (m == 0 || points.size() != 3 * m ||
-      (kind == SkeletonKind::kSegments && m % 2 != 0) || (kind == SkeletonKind::kPolyline && m < 2))
-    throw std::invalid_argument("AddSkeletonOffset: points (3 numbers each), two per segment, "
-                                ">= 2 for a polyline");
+  if (m == 0 || points.size() != 3 * m || (kind == SkeletonKind::kSegments && m % 2 != 0) ||
+      (kind == SkeletonKind::kPolyline && m < 2))
+    throw std::invalid_argument(
+        "AddSkeletonOffset: points (3 numbers each), two per segment, "
+        ">= 2 for a polyline");
   ModelNode node;
   node.type = NodeType::kSkeletonOffset;
   node.name = std::move(name);

@@ -25,10 +25,10 @@
 #include "model/convex_smooth_ops.h"
 #include "model/cylinder.h"
 #include "model/ellipsoid.h"
-#include "model/plane.h"
 #include "model/morph.h"
 #include "model/paraboloid.h"
 #include "model/partition.h"
+#include "model/plane.h"
 #include "model/quadric.h"
 #include "model/skeleton_offset.h"
 #include "model/smooth_ops.h"
@@ -49,14 +49,14 @@ enum class NodeType {
   kUnion,
   kIntersection,
   kDifference,
-  kBox,         // exact box SDF (model/box.h)
-  kComplement,  // -f of its one child (model/morph.h)
-  kMorph,       // t f_A + (1 - t) f_B of its two children (model/morph.h)
-  kParaboloid,  // vertex, axis, curvature (model/paraboloid.h)
+  kBox,             // exact box SDF (model/box.h)
+  kComplement,      // -f of its one child (model/morph.h)
+  kMorph,           // t f_A + (1 - t) f_B of its two children (model/morph.h)
+  kParaboloid,      // vertex, axis, curvature (model/paraboloid.h)
   kBlobs,           // Blinn blobs and compact kernels (model/blobs.h)
   kSkeletonOffset,  // offsets of points, segments, polylines (model/skeleton_offset.h)
   kPartition,       // soft space partition on a grid (model/partition.h)
-  kBernsteinMesh,  // model/bernstein_mesh.h: degree, grid, continuity; control_points
+  kBernsteinMesh,   // model/bernstein_mesh.h: degree, grid, continuity; control_points
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -86,20 +86,20 @@ enum class BlendSmoothing { kLiPhillips, kConvex };
 
 struct ModelNode {
   NodeType type = NodeType::kSphere;
-  std::string name;                  // optional user label ("name" in JSON)
-  int first_parameter = 0;           // offset of this node's parameters in the flat vector
-  int num_parameters = 0;            // how many it owns
-  std::vector<int> children;         // operators: indices into Model::nodes
-  int order = 0;                     // operators: n of H_n (0 = sharp)
+  std::string name;           // optional user label ("name" in JSON)
+  int first_parameter = 0;    // offset of this node's parameters in the flat vector
+  int num_parameters = 0;     // how many it owns
+  std::vector<int> children;  // operators: indices into Model::nodes
+  int order = 0;              // operators: n of H_n (0 = sharp)
   BlendSmoothing smoothing = BlendSmoothing::kLiPhillips;  // operators: which smooth max
-  std::vector<std::string> fixed;    // JSON field names the fitter must keep constant
-  int degree = 0;                    // bernstein_patch: k >= 1
-  Tetrahedron tetrahedron;           // bernstein_patch: the patch's tetrahedron
-  int count = 0;                     // kinds with per-element fields: number of elements
-  int variant = 0;                   // blobs: BlobKernel; skeleton_offset: SkeletonKind
+  std::vector<std::string> fixed;         // JSON field names the fitter must keep constant
+  int degree = 0;                         // bernstein_patch: k >= 1
+  Tetrahedron tetrahedron;                // bernstein_patch: the patch's tetrahedron
+  int count = 0;                          // kinds with per-element fields: number of elements
+  int variant = 0;                        // blobs: BlobKernel; skeleton_offset: SkeletonKind
   std::vector<std::vector<double>> cuts;  // partition: the cuts of x, y, z (structure)
-  BernsteinGrid grid;                // bernstein_mesh: the Kuhn grid
-  int continuity = 0;                // bernstein_mesh: declared continuity, 0 or 1
+  BernsteinGrid grid;                     // bernstein_mesh: the Kuhn grid
+  int continuity = 0;                     // bernstein_mesh: declared continuity, 0 or 1
 };
 
 // The parameter fields of one node, with the sizes of per-node fields filled in.
@@ -109,8 +109,8 @@ class Model {
  public:
   // Builders. Parameters are copied into the flat vector; the new node's index is returned.
   int AddPrimitive(NodeType type, const std::vector<double>& parameters, std::string name = "");
-  int AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon,
-                  int order, std::string name = "");
+  int AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon, int order,
+                  std::string name = "");
   // A Bernstein patch of degree k >= 1 with NumBernsteinControlPoints(k) control points
   // (DESIGN.md order); throws std::invalid_argument otherwise.
   int AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
@@ -178,16 +178,24 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
   const ModelNode& node = nodes_[index];
   const T* p = params + node.first_parameter;
   switch (node.type) {
-    case NodeType::kPlane: return PlaneEvaluator::Evaluate(p, x);
-    case NodeType::kSphere: return SphereEvaluator::Evaluate(p, x);
-    case NodeType::kCylinder: return CylinderEvaluator::Evaluate(p, x);
-    case NodeType::kCone: return ConeEvaluator::Evaluate(p, x);
-    case NodeType::kTorus: return TorusEvaluator::Evaluate(p, x);
-    case NodeType::kEllipsoid: return EllipsoidEvaluator::Evaluate(p, x);
-    case NodeType::kQuadric: return QuadricEvaluator::Evaluate(p, x);
+    case NodeType::kPlane:
+      return PlaneEvaluator::Evaluate(p, x);
+    case NodeType::kSphere:
+      return SphereEvaluator::Evaluate(p, x);
+    case NodeType::kCylinder:
+      return CylinderEvaluator::Evaluate(p, x);
+    case NodeType::kCone:
+      return ConeEvaluator::Evaluate(p, x);
+    case NodeType::kTorus:
+      return TorusEvaluator::Evaluate(p, x);
+    case NodeType::kEllipsoid:
+      return EllipsoidEvaluator::Evaluate(p, x);
+    case NodeType::kQuadric:
+      return QuadricEvaluator::Evaluate(p, x);
     case NodeType::kBernsteinPatch:
       return BernsteinPatch::Evaluate(node.degree, node.tetrahedron, p, x);
-    case NodeType::kBernsteinMesh: return BernsteinMesh::Evaluate(node.degree, node.grid, p, x);
+    case NodeType::kBernsteinMesh:
+      return BernsteinMesh::Evaluate(node.degree, node.grid, p, x);
     case NodeType::kUnion:
     case NodeType::kIntersection:
     case NodeType::kDifference: {
@@ -212,9 +220,12 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       }
       return acc;
     }
-    case NodeType::kBox: return BoxEvaluator::Evaluate(p, x);
-    case NodeType::kComplement: return -EvaluateNode(node.children[0], params, x);
-    case NodeType::kParaboloid: return ParaboloidEvaluator::Evaluate(p, x);
+    case NodeType::kBox:
+      return BoxEvaluator::Evaluate(p, x);
+    case NodeType::kComplement:
+      return -EvaluateNode(node.children[0], params, x);
+    case NodeType::kParaboloid:
+      return ParaboloidEvaluator::Evaluate(p, x);
     case NodeType::kPartition: {
       const UnitStep& mu = UnitStep::OfOrder(node.order);
       int cells[3][PartitionAxis::kMaxCells];
@@ -235,11 +246,11 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       return acc;
     }
     case NodeType::kBlobs:
-      return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order,
-                                      node.count, p, x);
+      return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order, node.count,
+                                      p, x);
     case NodeType::kSkeletonOffset:
-      return SkeletonOffsetEvaluator::Evaluate(static_cast<SkeletonKind>(node.variant),
-                                               node.count, p, x);
+      return SkeletonOffsetEvaluator::Evaluate(static_cast<SkeletonKind>(node.variant), node.count,
+                                               p, x);
     case NodeType::kMorph:
       return Morph(p[0], EvaluateNode(node.children[0], params, x),
                    EvaluateNode(node.children[1], params, x));

@@ -58,8 +58,8 @@ void RequirePositive(double x, const std::string& where) {
 void CheckKeys(const json& node, const std::set<std::string>& allowed, const std::string& path) {
   for (auto it = node.begin(); it != node.end(); ++it)
     if (!allowed.count(it.key()))
-      Fail(path + "." + it.key(), "unknown field for a node of type " +
-                                      node.at("type").get<std::string>());
+      Fail(path + "." + it.key(),
+           "unknown field for a node of type " + node.at("type").get<std::string>());
 }
 
 // Ellipsoid axes: 2 rows (e1, e2) or 3 rows whose third is parallel to e1 x e2.
@@ -152,7 +152,8 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
     case NodeType::kEllipsoid:
       append(Vector(node, "center", 3, path));
       append(Vector(node, "radii", 3, path));
-      for (int i = 0; i < 3; ++i) RequirePositive(p[3 + i], path + ".radii[" + std::to_string(i) + "]");
+      for (int i = 0; i < 3; ++i)
+        RequirePositive(p[3 + i], path + ".radii[" + std::to_string(i) + "]");
       append(EllipsoidAxes(node, path));
       break;
     case NodeType::kQuadric: {
@@ -251,8 +252,8 @@ int ReadComposite(NodeType type, const json& node, const std::string& path, int 
   const size_t arity = type == NodeType::kComplement ? 1 : 2;
   if (!node.contains("children") || !node.at("children").is_array() ||
       node.at("children").size() != arity)
-    Fail(path + ".children", "must be an array of " + std::to_string(arity) + " node" +
-                                 (arity > 1 ? "s" : ""));
+    Fail(path + ".children",
+         "must be an array of " + std::to_string(arity) + " node" + (arity > 1 ? "s" : ""));
   std::vector<double> parameters;
   if (type == NodeType::kMorph) {
     const double t = Number(node, "t", path);
@@ -281,25 +282,32 @@ int ReadBlobs(const json& node, const std::string& path, const std::string& name
   }
   const std::vector<double> weights = Vector(node, "weights", m, path);
   const std::vector<double> widths = Vector(node, "widths", m, path);
-  for (size_t i = 0; i < m; ++i) RequirePositive(widths[i], path + ".widths[" + std::to_string(i) + "]");
+  for (size_t i = 0; i < m; ++i)
+    RequirePositive(widths[i], path + ".widths[" + std::to_string(i) + "]");
   const double threshold = Number(node, "threshold", path);
   if (!node.contains("kernel") || !node.at("kernel").is_string())
     Fail(path + ".kernel", "missing or not a string (gaussian, wyvill or h_n)");
   const std::string k = node.at("kernel").get<std::string>();
   BlobKernel kernel;
-  if (k == "gaussian") kernel = BlobKernel::kGaussian;
-  else if (k == "wyvill") kernel = BlobKernel::kWyvill;
-  else if (k == "h_n") kernel = BlobKernel::kUnitStep;
-  else Fail(path + ".kernel", "unknown kernel '" + k + "' (gaussian, wyvill or h_n)");
+  if (k == "gaussian")
+    kernel = BlobKernel::kGaussian;
+  else if (k == "wyvill")
+    kernel = BlobKernel::kWyvill;
+  else if (k == "h_n")
+    kernel = BlobKernel::kUnitStep;
+  else
+    Fail(path + ".kernel", "unknown kernel '" + k + "' (gaussian, wyvill or h_n)");
   long long order = 3;
   if (node.contains("order")) {
-    if (kernel != BlobKernel::kUnitStep) Fail(path + ".order", "only the h_n kernel takes an order");
+    if (kernel != BlobKernel::kUnitStep)
+      Fail(path + ".order", "only the h_n kernel takes an order");
     if (!node.at("order").is_number_integer()) Fail(path + ".order", "must be an integer");
     order = node.at("order").get<long long>();
     if (order < 1 || order > UnitStep::kMaxOrder)
       Fail(path + ".order", "must be an integer in 1.." + std::to_string(UnitStep::kMaxOrder));
   }
-  return model->AddBlobs(kernel, static_cast<int>(order), centers, weights, widths, threshold, name);
+  return model->AddBlobs(kernel, static_cast<int>(order), centers, weights, widths, threshold,
+                         name);
 }
 
 // skeleton_offset {"skeleton": {"points": [[3],...]} | {"segments": [[[3],[3]],...]} |
@@ -307,20 +315,26 @@ int ReadBlobs(const json& node, const std::string& path, const std::string& name
 int ReadSkeletonOffset(const json& node, const std::string& path, const std::string& name,
                        Model* model) {
   const std::string where = path + ".skeleton";
-  if (!node.contains("skeleton") || !node.at("skeleton").is_object() || node.at("skeleton").size() != 1)
+  if (!node.contains("skeleton") || !node.at("skeleton").is_object() ||
+      node.at("skeleton").size() != 1)
     Fail(where, "must be an object with exactly one of points, segments, polyline");
   const json& s = node.at("skeleton");
   const std::string key = s.begin().key();
   const json& list = s.begin().value();
   SkeletonKind kind;
-  if (key == "points") kind = SkeletonKind::kPoints;
-  else if (key == "segments") kind = SkeletonKind::kSegments;
-  else if (key == "polyline") kind = SkeletonKind::kPolyline;
-  else Fail(where + "." + key, "unknown skeleton (points, segments or polyline)");
+  if (key == "points")
+    kind = SkeletonKind::kPoints;
+  else if (key == "segments")
+    kind = SkeletonKind::kSegments;
+  else if (key == "polyline")
+    kind = SkeletonKind::kPolyline;
+  else
+    Fail(where + "." + key, "unknown skeleton (points, segments or polyline)");
   const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
   if (!list.is_array() || list.size() < least)
-    Fail(where + "." + key, "must be an array of at least " + std::to_string(least) +
-                                (kind == SkeletonKind::kSegments ? " segment [[3], [3]]" : " points [x, y, z]"));
+    Fail(where + "." + key,
+         "must be an array of at least " + std::to_string(least) +
+             (kind == SkeletonKind::kSegments ? " segment [[3], [3]]" : " points [x, y, z]"));
   std::vector<double> points;
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string at = where + "." + key + "[" + std::to_string(i) + "]";
@@ -364,17 +378,21 @@ int ReadPartition(const json& node, const std::string& path, int depth, const st
     cuts[k] = Vector(c, c.size(), where);
     for (size_t i = 1; i < cuts[k].size(); ++i) {
       const double width = cuts[k][i] - cuts[k][i - 1];
-      if (!(width > 0.0)) Fail(where + "[" + std::to_string(i) + "]", "cuts must be strictly increasing");
+      if (!(width > 0.0))
+        Fail(where + "[" + std::to_string(i) + "]", "cuts must be strictly increasing");
       if (width < 2.0 * epsilon)
         Fail(where + "[" + std::to_string(i) + "]",
-             std::string("the cell between ") + axis[k] + " = " + json(cuts[k][i - 1]).dump() + " and " +
-                 json(cuts[k][i]).dump() + " is " + json(width).dump() + " wide, less than 2 epsilon = " +
-                 json(2.0 * epsilon).dump() + " (the bases are a partition of unity only from 2 epsilon)");
+             std::string("the cell between ") + axis[k] + " = " + json(cuts[k][i - 1]).dump() +
+                 " and " + json(cuts[k][i]).dump() + " is " + json(width).dump() +
+                 " wide, less than 2 epsilon = " + json(2.0 * epsilon).dump() +
+                 " (the bases are a partition of unity only from 2 epsilon)");
     }
     cells *= cuts[k].size() + 1;
   }
-  if (!node.contains("children") || !node.at("children").is_array() || node.at("children").size() != cells)
-    Fail(path + ".children", "must hold one node per cell: " + std::to_string(cells) + " nodes, x fastest");
+  if (!node.contains("children") || !node.at("children").is_array() ||
+      node.at("children").size() != cells)
+    Fail(path + ".children",
+         "must hold one node per cell: " + std::to_string(cells) + " nodes, x fastest");
   std::vector<int> children;
   const json& ch = node.at("children");
   for (size_t i = 0; i < ch.size(); ++i)
@@ -414,7 +432,8 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     Fail(path + ".type", "missing or not a string");
   const std::string type_name = node.at("type").get<std::string>();
   NodeType type;
-  if (!NodeTypeFromName(type_name, &type)) Fail(path + ".type", "unknown node type '" + type_name + "'");
+  if (!NodeTypeFromName(type_name, &type))
+    Fail(path + ".type", "unknown node type '" + type_name + "'");
   CheckKeys(node, AllowedKeys(type), path);
 
   std::string name;
@@ -535,7 +554,8 @@ json WriteNode(const Model& model, int index) {
     out["threshold"] = p[b + 5 * m];
     const BlobKernel kernel = static_cast<BlobKernel>(node.variant);
     out["kernel"] = kernel == BlobKernel::kGaussian ? "gaussian"
-                    : kernel == BlobKernel::kWyvill ? "wyvill" : "h_n";
+                    : kernel == BlobKernel::kWyvill ? "wyvill"
+                                                    : "h_n";
     if (kernel == BlobKernel::kUnitStep) out["order"] = node.order;
   } else if (node.type == NodeType::kSkeletonOffset) {
     const int b = node.first_parameter, m = node.count;
@@ -547,8 +567,9 @@ json WriteNode(const Model& model, int index) {
     } else {
       for (int i = 0; i < m; ++i) list.push_back(Slice(p, b + 3 * i, 3));
     }
-    const char* key = kind == SkeletonKind::kPoints ? "points"
-                      : kind == SkeletonKind::kSegments ? "segments" : "polyline";
+    const char* key = kind == SkeletonKind::kPoints     ? "points"
+                      : kind == SkeletonKind::kSegments ? "segments"
+                                                        : "polyline";
     out["skeleton"] = json{{key, list}};
     out["radius"] = p[b + 3 * m];
   } else if (node.type == NodeType::kBox) {
@@ -572,8 +593,8 @@ json WriteNode(const Model& model, int index) {
     double e3[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                     e1[0] * e2[1] - e1[1] * e2[0]};
     const double n = std::sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
-    out["axes"] = json::array({Slice(p, b + 6, 3), Slice(p, b + 9, 3),
-                               json::array({e3[0] / n, e3[1] / n, e3[2] / n})});
+    out["axes"] = json::array(
+        {Slice(p, b + 6, 3), Slice(p, b + 9, 3), json::array({e3[0] / n, e3[1] / n, e3[2] / n})});
   } else {
     int k = node.first_parameter;
     for (const ParameterField& f : ParameterFieldsOf(node.type)) {
@@ -597,7 +618,8 @@ Model ModelFromJson(const json& document) {
   if (!document.contains("version") || !document.at("version").is_number_integer())
     Fail("version", "missing or not an integer");
   if (document.at("version").get<long long>() != 1)
-    Fail("version", "unsupported version " + document.at("version").dump() + " (this build reads 1)");
+    Fail("version",
+         "unsupported version " + document.at("version").dump() + " (this build reads 1)");
   if (!document.contains("root")) Fail("root", "missing");
   Model model;
   const int root = ReadNode(document.at("root"), "root", 1, &model);

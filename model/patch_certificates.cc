@@ -52,8 +52,12 @@ CartesianMargin CartesianConvexityMargin(int k, const Tetrahedron& tet, const do
     Eigen::Matrix3d A;
     A << a[0], a[3], a[4], a[3], a[1], a[5], a[4], a[5], a[2];
     const Eigen::Matrix3d c = einv.transpose() * A * einv;
-    const double s[6] = {c(0, 0), c(1, 1), c(2, 2), 0.5 * (c(0, 1) + c(1, 0)),
-                         0.5 * (c(0, 2) + c(2, 0)), 0.5 * (c(1, 2) + c(2, 1))};
+    const double s[6] = {c(0, 0),
+                         c(1, 1),
+                         c(2, 2),
+                         0.5 * (c(0, 1) + c(1, 0)),
+                         0.5 * (c(0, 2) + c(2, 0)),
+                         0.5 * (c(1, 2) + c(2, 1))};
     const double l = SymmetricMinEigenvalue3(s);
     if (std::isnan(l) || l < lmin) lmin = l;
   });
@@ -223,8 +227,8 @@ LocalConvexity CertifyLocalConvexity(int k, const double* b, int max_depth) {
     return r;
   }
   const double tau[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
-  r.locally_convex = LocallyConvex(
-      k, std::vector<double>(b, b + NumBernsteinControlPoints(k)), tau, 0, max_depth, &r);
+  r.locally_convex = LocallyConvex(k, std::vector<double>(b, b + NumBernsteinControlPoints(k)), tau,
+                                   0, max_depth, &r);
   return r;
 }
 

@@ -14,7 +14,8 @@
 // c > 0 and 1 + c min_lambda b_lambda > 0, phi is increasing on the range of f over T (f >= min b
 // by the convex hull property) and phi(0) = 0, so {f <= 0} n T = {f~ <= 0} n T for f~ = phi o f,
 // a degree-2k polynomial: f elevated k times plus (c/2) f^2, where
-//   (f^2)_nu = sum_{lambda + lambda' = nu} b_lambda b_lambda' [k!/lambda!][k!/lambda'!] / [(2k)!/nu!].
+//   (f^2)_nu = sum_{lambda + lambda' = nu} b_lambda b_lambda' [k!/lambda!][k!/lambda'!] /
+//   [(2k)!/nu!].
 // If every A^mu of f~ (optionally degree-elevated) is positive definite, the solid is convex on T.
 // c is searched on (0, 0.999/max(0, -min b)) by a log grid then golden section on the margin
 // (the margin normalised by max|b~| so different c compare); c = 0 (f elevated to 2k) is tried
@@ -50,10 +51,10 @@ struct FinslerOptions {
   int golden_steps = 20;
 };
 struct FinslerCertificate {
-  bool convex = false;      // the solid {f <= 0} n T is certified convex
-  double c = 0.0;           // the c used (best margin found)
-  double margin = 0.0;      // min eigenvalue of the A^mu of f~ / max|b~| at that c
-  int degree = 0;           // degree of f~ that was certified (2k + extra_elevation)
+  bool convex = false;  // the solid {f <= 0} n T is certified convex
+  double c = 0.0;       // the c used (best margin found)
+  double margin = 0.0;  // min eigenvalue of the A^mu of f~ / max|b~| at that c
+  int degree = 0;       // degree of f~ that was certified (2k + extra_elevation)
 };
 // k >= 2 (degree 1 is affine: convex, c = 0).
 FinslerCertificate CertifyFinsler(int k, const double* b, const FinslerOptions& options = {});
@@ -64,8 +65,8 @@ std::vector<double> SubTetrahedronControlPoints(int k, const double* b, const do
 
 struct LocalConvexity {
   bool locally_convex = false;
-  int pieces_certified = 0;   // sub-tetrahedra certified by A^mu
-  int pieces_dropped = 0;     // sub-tetrahedra without patch points (control points one sign)
+  int pieces_certified = 0;  // sub-tetrahedra certified by A^mu
+  int pieces_dropped = 0;    // sub-tetrahedra without patch points (control points one sign)
   int max_depth_reached = 0;
 };
 LocalConvexity CertifyLocalConvexity(int k, const double* b, int max_depth = 16);

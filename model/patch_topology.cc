@@ -5,7 +5,9 @@
 namespace implicitfit {
 namespace {
 
-double At(const double* b, const std::array<int, 4>& l) { return b[BernsteinIndex(l[1], l[2], l[3])]; }
+double At(const double* b, const std::array<int, 4>& l) {
+  return b[BernsteinIndex(l[1], l[2], l[3])];
+}
 
 }  // namespace
 

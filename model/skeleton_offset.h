@@ -57,7 +57,8 @@ struct SkeletonOffsetEvaluator {
       }
     } else {
       const int step = kind == SkeletonKind::kSegments ? 2 : 1;
-      for (int i = 0; i + 1 < num_points; i += step) take(SegmentDistance(p + 3 * i, p + 3 * i + 3, x));
+      for (int i = 0; i + 1 < num_points; i += step)
+        take(SegmentDistance(p + 3 * i, p + 3 * i + 3, x));
     }
     return best - p[3 * num_points];
   }

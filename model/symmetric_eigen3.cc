@@ -11,7 +11,9 @@ inline void Cross(const double* a, const double* b, double* c) {
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
-inline double Dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double Dot(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // x^T M y for the symmetric M given as rows.
 inline double Form(const double m[3][3], const double* x, const double* y) {
@@ -37,7 +39,8 @@ void Eigenvalues(const double a[6], double out[3], bool min_only) {
                     {a[3] * inv, a[1] * inv - q, a[5] * inv},
                     {a[4] * inv, a[5] * inv, a[2] * inv - q}};
   const double p2 = (b[0][0] * b[0][0] + b[1][1] * b[1][1] + b[2][2] * b[2][2] +
-                     2.0 * (b[0][1] * b[0][1] + b[0][2] * b[0][2] + b[1][2] * b[1][2])) / 6.0;
+                     2.0 * (b[0][1] * b[0][1] + b[0][2] * b[0][2] + b[1][2] * b[1][2])) /
+                    6.0;
   if (p2 == 0.0) {
     out[0] = out[1] = out[2] = q * scale;
     return;

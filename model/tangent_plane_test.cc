@@ -25,7 +25,10 @@ TangentPlaneTestResult TangentPlaneTestCore(
         Eigen::Vector3d lo = x0, hi = x1;  // f(lo) has f0's sign
         for (int it = 0; it < 60; ++it) {
           const Eigen::Vector3d mid = 0.5 * (lo + hi);
-          if ((f(mid) < 0.0) == (f0 < 0.0)) lo = mid; else hi = mid;
+          if ((f(mid) < 0.0) == (f0 < 0.0))
+            lo = mid;
+          else
+            hi = mid;
         }
         const Eigen::Vector3d p = 0.5 * (lo + hi);
         const Eigen::Vector3d g = gradient(p);
@@ -42,7 +45,8 @@ TangentPlaneTestResult TangentPlaneTestCore(
   const double allowed = options.tolerance * longest;
   for (size_t i = 0; i < points.size(); ++i) {
     double worst = 0.0;
-    for (size_t j = 0; j < points.size(); ++j) worst = std::max(worst, (points[j] - points[i]).dot(normals[i]));
+    for (size_t j = 0; j < points.size(); ++j)
+      worst = std::max(worst, (points[j] - points[i]).dot(normals[i]));
     result.worst_excursion = std::max(result.worst_excursion, worst / longest);
     if (worst > allowed) ++result.violations;
   }
@@ -53,8 +57,10 @@ TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tet, const dou
                                         const TangentPlaneTestOptions& options) {
   double longest = 0.0, largest = 0.0;
   for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (tet.vertex(i) - tet.vertex(j)).norm());
-  for (long long i = 0; i < NumBernsteinControlPoints(k); ++i) largest = std::max(largest, std::abs(b[i]));
+    for (int j = i + 1; j < 4; ++j)
+      longest = std::max(longest, (tet.vertex(i) - tet.vertex(j)).norm());
+  for (long long i = 0; i < NumBernsteinControlPoints(k); ++i)
+    largest = std::max(largest, std::abs(b[i]));
   if (largest == 0.0) return TangentPlaneTestResult{};
 
   std::mt19937_64 rng(options.seed);

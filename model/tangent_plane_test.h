@@ -23,15 +23,15 @@
 namespace implicitfit {
 
 struct TangentPlaneTestOptions {
-  int segments = 1000;        // random segments through the tetrahedron
-  int steps = 16;             // sign-change search steps per segment
-  double tolerance = 1e-8;    // allowed excursion beyond a tangent plane, relative to L
-  std::uint64_t seed = 1;     // random generator seed
+  int segments = 1000;      // random segments through the tetrahedron
+  int steps = 16;           // sign-change search steps per segment
+  double tolerance = 1e-8;  // allowed excursion beyond a tangent plane, relative to L
+  std::uint64_t seed = 1;   // random generator seed
 };
 
 struct TangentPlaneTestResult {
-  int zero_points = 0;        // points of the zero set found inside the tetrahedron
-  int violations = 0;         // zero points whose tangent plane some other zero point crosses
+  int zero_points = 0;           // points of the zero set found inside the tetrahedron
+  int violations = 0;            // zero points whose tangent plane some other zero point crosses
   double worst_excursion = 0.0;  // largest (q - p) . n / L seen (> tolerance: a violation)
 };
 

@@ -20,7 +20,8 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
   const ModelNode& node = model.nodes()[index];
   const double* p = model.parameters().data() + node.first_parameter;
   switch (node.type) {
-    case NodeType::kPlane: return Leaf(TreeConvexity::kConvexFunction, "plane: affine");
+    case NodeType::kPlane:
+      return Leaf(TreeConvexity::kConvexFunction, "plane: affine");
     case NodeType::kSphere:
       return Leaf(TreeConvexity::kConvexFunction, "sphere: |x - c| - r is convex");
     case NodeType::kCylinder:
@@ -28,7 +29,8 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
     case NodeType::kCone:
       return Leaf(TreeConvexity::kConvexFunction,
                   "cone: exact signed distance to a convex single nappe");
-    case NodeType::kTorus: return Leaf(TreeConvexity::kNotCertified, "torus: not convex");
+    case NodeType::kTorus:
+      return Leaf(TreeConvexity::kNotCertified, "torus: not convex");
     case NodeType::kEllipsoid:
       return Leaf(TreeConvexity::kConvexSolid,
                   "ellipsoid: convex solid, first-order distance not certified convex");
@@ -46,7 +48,8 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
       if (node.degree == 1)
         return Leaf(TreeConvexity::kConvexFunction, "bernstein_patch of degree 1: affine");
       if (!CertifyConvexity(node.degree, p).convex)
-        return Leaf(TreeConvexity::kNotCertified, "bernstein_patch: A^mu not all positive definite");
+        return Leaf(TreeConvexity::kNotCertified,
+                    "bernstein_patch: A^mu not all positive definite");
       NodeCertificate r = Leaf(TreeConvexity::kConvexFunction,
                                "bernstein_patch certified by A^mu: convex on its tetrahedron");
       r.domain_patches.push_back(index);
@@ -81,16 +84,18 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
     case NodeType::kMorph:
     case NodeType::kUnion:
     case NodeType::kIntersection:
-    case NodeType::kDifference: break;
+    case NodeType::kDifference:
+      break;
   }
-  return Leaf(TreeConvexity::kNotCertified, std::string(NodeTypeName(node.type)) +
-                                                ": no convexity rule for this node type");
+  return Leaf(TreeConvexity::kNotCertified,
+              std::string(NodeTypeName(node.type)) + ": no convexity rule for this node type");
 }
 
 NodeCertificate CertifyOperator(const ModelNode& node, const std::vector<NodeCertificate>& all) {
   if (node.type == NodeType::kUnion)
-    return Leaf(TreeConvexity::kNotCertified, "union: not certified (a union of convex solids "
-                                              "is not convex in general)");
+    return Leaf(TreeConvexity::kNotCertified,
+                "union: not certified (a union of convex solids "
+                "is not convex in general)");
   if (node.type == NodeType::kDifference)
     return Leaf(TreeConvexity::kNotCertified, "difference: not certified");
   // Intersection.
@@ -106,8 +111,7 @@ NodeCertificate CertifyOperator(const ModelNode& node, const std::vector<NodeCer
     const NodeCertificate& child = all[c];
     weakest = std::max(weakest, child.convexity);
     for (int d : child.domain_patches)
-      if (std::find(r.domain_patches.begin(), r.domain_patches.end(), d) ==
-          r.domain_patches.end())
+      if (std::find(r.domain_patches.begin(), r.domain_patches.end(), d) == r.domain_patches.end())
         r.domain_patches.push_back(d);
   }
   r.convexity = weakest;
@@ -123,8 +127,9 @@ NodeCertificate CertifyOperator(const ModelNode& node, const std::vector<NodeCer
   } else {
     r.convexity = TreeConvexity::kNotCertified;
     r.domain_patches.clear();
-    r.rule = "convex-smoothing intersection needs convex functions, some child is only a "
-             "convex solid";
+    r.rule =
+        "convex-smoothing intersection needs convex functions, some child is only a "
+        "convex solid";
   }
   return r;
 }
@@ -157,9 +162,12 @@ void CertifyNode(const Model& model, int index, std::vector<NodeCertificate>* al
 
 const char* TreeConvexityName(TreeConvexity c) {
   switch (c) {
-    case TreeConvexity::kConvexFunction: return "convex-function";
-    case TreeConvexity::kConvexSolid: return "convex-solid";
-    case TreeConvexity::kNotCertified: return "not-certified";
+    case TreeConvexity::kConvexFunction:
+      return "convex-function";
+    case TreeConvexity::kConvexSolid:
+      return "convex-solid";
+    case TreeConvexity::kNotCertified:
+      return "not-certified";
   }
   return "not-certified";
 }

@@ -45,13 +45,15 @@ std::vector<Truth> MakeClouds(const std::string& dir, int n) {
     t.radius = 0.8 + 0.1 * (i % 6);
     const json model = {{"format", "implicitfit-model"},
                         {"version", 1},
-                        {"root", {{"type", "sphere"},
-                                  {"center", {t.center[0], t.center[1], t.center[2]}},
-                                  {"radius", t.radius}}}};
+                        {"root",
+                         {{"type", "sphere"},
+                          {"center", {t.center[0], t.center[1], t.center[2]}},
+                          {"radius", t.radius}}}};
     const std::string truth_file = dir + "/" + t.name + ".truth";
     WriteText(truth_file, model.dump());
-    const auto r = RunCommand(kCli + " sample " + truth_file + " --count 1500 --noise 0.002 --seed " +
-                              std::to_string(i + 1) + " --out " + t.path);
+    const auto r =
+        RunCommand(kCli + " sample " + truth_file + " --count 1500 --noise 0.002 --seed " +
+                   std::to_string(i + 1) + " --out " + t.path);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     truths.push_back(t);
   }
@@ -67,9 +69,12 @@ std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (quoted) {
-      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') field += text[++i];
-      else if (c == '"') quoted = false;
-      else field += c;
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
+        field += text[++i];
+      else if (c == '"')
+        quoted = false;
+      else
+        field += c;
     } else if (c == '"') {
       quoted = true;
     } else if (c == ',') {
@@ -90,7 +95,8 @@ std::map<std::string, std::vector<std::string>> SummaryRows(const std::string& c
   EXPECT_FALSE(rows.empty()) << csv;
   std::map<std::string, std::vector<std::string>> by_input;
   if (rows.empty()) return by_input;
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"input", "status", "rms", "inliers", "points", "seconds", "error"}));
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"input", "status", "rms", "inliers", "points",
+                                               "seconds", "error"}));
   for (size_t i = 1; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i].size(), 7u) << csv << " row " << i;
     by_input[rows[i][0]] = rows[i];
@@ -127,7 +133,8 @@ TEST_F(BatchCommand, FitsEveryInputNearTheTruthWithReportsAndSummary) {
   const std::string out = testsupport::ScratchDir("batch_all");
   const auto& truths = *truths_;
   const size_t n = 6;
-  const auto r = RunCommand(kCli + " batch" + Join(truths, n) + " --model sphere --out-dir " + out + " --jobs 2");
+  const auto r = RunCommand(kCli + " batch" + Join(truths, n) + " --model sphere --out-dir " + out +
+                            " --jobs 2");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("6 inputs: 6 fitted, 0 skipped, 0 failed"), std::string::npos) << r.out;
   const auto rows = SummaryRows(out + "/summary.csv");
@@ -136,7 +143,8 @@ TEST_F(BatchCommand, FitsEveryInputNearTheTruthWithReportsAndSummary) {
     const Truth& t = truths[i];
     const json model = ReadJson(out + "/" + t.name + ".model.json");
     ASSERT_EQ(model["root"]["type"], "sphere");
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(model["root"]["center"][k].get<double>(), t.center[k], 0.005) << t.name;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(model["root"]["center"][k].get<double>(), t.center[k], 0.005) << t.name;
     EXPECT_NEAR(model["root"]["radius"].get<double>(), t.radius, 0.005) << t.name;
     const json report = ReadJson(out + "/" + t.name + ".report.json");
     EXPECT_TRUE(report["success"].get<bool>());
@@ -149,7 +157,8 @@ TEST_F(BatchCommand, FitsEveryInputNearTheTruthWithReportsAndSummary) {
     EXPECT_EQ(row[3], std::to_string(report["inliers"].get<size_t>()));
     EXPECT_EQ(row[4], "1500");
     EXPECT_EQ(row[6], "");
-    EXPECT_NE(r.err.find(t.name + " ok"), std::string::npos) << "a plain progress line per input: " << r.err;
+    EXPECT_NE(r.err.find(t.name + " ok"), std::string::npos)
+        << "a plain progress line per input: " << r.err;
   }
   EXPECT_NE(r.err.find("[6/6]"), std::string::npos) << r.err;
 }
@@ -157,9 +166,12 @@ TEST_F(BatchCommand, FitsEveryInputNearTheTruthWithReportsAndSummary) {
 TEST_F(BatchCommand, WritesWhatFitWritesForTheSameCloud) {
   const std::string out = testsupport::ScratchDir("batch_same_as_fit");
   const Truth& t = (*truths_)[3];
-  ASSERT_EQ(RunCommand(kCli + " batch " + t.path + " --model sphere --out-dir " + out + " --jobs 1 --seed 7").exit_code, 0);
-  const auto f = RunCommand(kCli + " fit " + t.path + " --model sphere --seed 7 --out " + out + "/fit.json --report " +
-                            out + "/fit_report.json");
+  ASSERT_EQ(RunCommand(kCli + " batch " + t.path + " --model sphere --out-dir " + out +
+                       " --jobs 1 --seed 7")
+                .exit_code,
+            0);
+  const auto f = RunCommand(kCli + " fit " + t.path + " --model sphere --seed 7 --out " + out +
+                            "/fit.json --report " + out + "/fit_report.json");
   ASSERT_EQ(f.exit_code, 0) << f.err;
   EXPECT_EQ(Slurp(out + "/fit.json"), Slurp(out + "/" + t.name + ".model.json"));
   json a = ReadJson(out + "/fit_report.json"), b = ReadJson(out + "/" + t.name + ".report.json");
@@ -173,13 +185,14 @@ TEST_F(BatchCommand, BadInputsFailAloneAndAreNamed) {
   const std::string bad_dir = testsupport::ScratchDir("batch_bad_inputs");
   WriteText(bad_dir + "/garbage.xyz", "this is not a point cloud\n\x01\x02\n");
   std::string tiny;  // 12 points: too few for a sphere fit (a negative result, not an error)
-  for (int i = 0; i < 12; ++i) tiny += std::to_string(std::cos(i)) + " " + std::to_string(std::sin(i)) + " 0 0 0 1\n";
+  for (int i = 0; i < 12; ++i)
+    tiny += std::to_string(std::cos(i)) + " " + std::to_string(std::sin(i)) + " 0 0 0 1\n";
   WriteText(bad_dir + "/tiny.xyz", tiny);
   const auto& truths = *truths_;
   const std::string missing = bad_dir + "/missing.xyz";
-  const auto r = RunCommand(kCli + " batch " + truths[0].path + " " + bad_dir + "/garbage.xyz " + truths[1].path +
-                            " " + missing + " " + bad_dir + "/tiny.xyz " + truths[2].path +
-                            " --model sphere --out-dir " + out + " --jobs 2");
+  const auto r = RunCommand(kCli + " batch " + truths[0].path + " " + bad_dir + "/garbage.xyz " +
+                            truths[1].path + " " + missing + " " + bad_dir + "/tiny.xyz " +
+                            truths[2].path + " --model sphere --out-dir " + out + " --jobs 2");
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   const auto rows = SummaryRows(out + "/summary.csv");
   ASSERT_EQ(rows.size(), 6u);
@@ -208,10 +221,12 @@ TEST_F(BatchCommand, BadInputsFailAloneAndAreNamed) {
 TEST_F(BatchCommand, ResumeRefitsOnlyMissingOrBrokenOutputs) {
   const std::string out = testsupport::ScratchDir("batch_resume");
   const auto& truths = *truths_;
-  const std::string command = kCli + " batch" + Join(truths, 5) + " --model sphere --out-dir " + out + " --jobs 2";
+  const std::string command =
+      kCli + " batch" + Join(truths, 5) + " --model sphere --out-dir " + out + " --jobs 2";
   ASSERT_EQ(RunCommand(command).exit_code, 0);
   std::vector<fs::file_time_type> times;
-  for (int i = 0; i < 5; ++i) times.push_back(fs::last_write_time(out + "/" + truths[i].name + ".model.json"));
+  for (int i = 0; i < 5; ++i)
+    times.push_back(fs::last_write_time(out + "/" + truths[i].name + ".model.json"));
   const std::string first_model = Slurp(out + "/" + truths[1].name + ".model.json");
   fs::remove(out + "/" + truths[1].name + ".model.json");
   WriteText(out + "/" + truths[3].name + ".report.json", "{\"success\": tr");  // truncated
@@ -219,26 +234,32 @@ TEST_F(BatchCommand, ResumeRefitsOnlyMissingOrBrokenOutputs) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("5 inputs: 2 fitted, 3 skipped, 0 failed"), std::string::npos) << r.out;
   for (int i : {0, 2, 4})
-    EXPECT_EQ(fs::last_write_time(out + "/" + truths[i].name + ".model.json"), times[i]) << "not rewritten";
-  EXPECT_NE(fs::last_write_time(out + "/" + truths[3].name + ".model.json"), times[3]) << "refitted";
+    EXPECT_EQ(fs::last_write_time(out + "/" + truths[i].name + ".model.json"), times[i])
+        << "not rewritten";
+  EXPECT_NE(fs::last_write_time(out + "/" + truths[3].name + ".model.json"), times[3])
+      << "refitted";
   EXPECT_EQ(Slurp(out + "/" + truths[1].name + ".model.json"), first_model);
   EXPECT_TRUE(ReadJson(out + "/" + truths[3].name + ".report.json")["success"].get<bool>());
   const auto rows = SummaryRows(out + "/summary.csv");
   EXPECT_EQ(rows.at(truths[0].path)[1], "skipped");
-  EXPECT_EQ(rows.at(truths[0].path)[4], "1500") << "figures of a skipped input come from its report";
+  EXPECT_EQ(rows.at(truths[0].path)[4], "1500")
+      << "figures of a skipped input come from its report";
   EXPECT_EQ(rows.at(truths[1].path)[1], "ok");
 
   const auto again = RunCommand(command + " --resume");
   EXPECT_EQ(again.exit_code, 0);
-  EXPECT_NE(again.out.find("5 inputs: 0 fitted, 5 skipped, 0 failed"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("5 inputs: 0 fitted, 5 skipped, 0 failed"), std::string::npos)
+      << again.out;
   // A model of another kind is not a complete output for --model plane.
-  const auto plane = RunCommand(kCli + " batch" + Join(truths, 1) + " --model plane --out-dir " + out + " --resume");
+  const auto plane = RunCommand(kCli + " batch" + Join(truths, 1) + " --model plane --out-dir " +
+                                out + " --resume");
   EXPECT_NE(plane.out.find("0 skipped"), std::string::npos) << plane.out;
 }
 
 TEST_F(BatchCommand, KillDashNineLeavesNoPartialFileAndResumeCompletes) {
   // 80 inputs: 8 copies of each of the 10 clouds (each process start of `sample` is slow).
-  const std::string out = testsupport::ScratchDir("batch_kill"), in = testsupport::ScratchDir("batch_kill_in");
+  const std::string out = testsupport::ScratchDir("batch_kill"),
+                    in = testsupport::ScratchDir("batch_kill_in");
   std::vector<Truth> copies;
   for (int k = 0; k < 8; ++k)
     for (const Truth& t : *truths_) {
@@ -249,20 +270,24 @@ TEST_F(BatchCommand, KillDashNineLeavesNoPartialFileAndResumeCompletes) {
       copies.push_back(c);
     }
   const size_t n = copies.size();
-  const std::string command = kCli + " batch " + in + " --model sphere --out-dir " + out + " --jobs 2";
-  ASSERT_EQ(std::system((command + " > " + out + ".log 2>&1 & echo $! > " + out + ".pid").c_str()), 0);
+  const std::string command =
+      kCli + " batch " + in + " --model sphere --out-dir " + out + " --jobs 2";
+  ASSERT_EQ(std::system((command + " > " + out + ".log 2>&1 & echo $! > " + out + ".pid").c_str()),
+            0);
   const pid_t pid = std::stoi(Slurp(out + ".pid"));
   const auto count_models = [&]() {
     size_t models = 0;
-    for (const auto& e : fs::directory_iterator(out)) models += e.path().string().size() > 11 &&
-        e.path().string().substr(e.path().string().size() - 11) == ".model.json";
+    for (const auto& e : fs::directory_iterator(out))
+      models += e.path().string().size() > 11 &&
+                e.path().string().substr(e.path().string().size() - 11) == ".model.json";
     return models;
   };
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (count_models() < 3 && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ASSERT_EQ(::kill(pid, SIGKILL), 0);
-  std::system(("while kill -0 " + std::to_string(pid) + " 2>/dev/null; do sleep 0.01; done").c_str());
+  std::system(
+      ("while kill -0 " + std::to_string(pid) + " 2>/dev/null; do sleep 0.01; done").c_str());
   const size_t done_before = count_models();
   ASSERT_GE(done_before, 3u);
   ASSERT_LT(done_before, n) << "the batch finished before it was killed: the test proves nothing";
@@ -289,14 +314,22 @@ TEST_F(BatchCommand, KillDashNineLeavesNoPartialFileAndResumeCompletes) {
   for (const auto& e : fs::directory_iterator(out))
     EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << "stale temporary " << e.path();
   const auto again = RunCommand(command + " --resume");
-  EXPECT_NE(again.out.find("0 fitted, " + std::to_string(n) + " skipped"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("0 fitted, " + std::to_string(n) + " skipped"), std::string::npos)
+      << again.out;
 }
 
 TEST_F(BatchCommand, OneJobAndTwoJobsGiveIdenticalModels) {
-  const std::string one = testsupport::ScratchDir("batch_jobs1"), two = testsupport::ScratchDir("batch_jobs2");
+  const std::string one = testsupport::ScratchDir("batch_jobs1"),
+                    two = testsupport::ScratchDir("batch_jobs2");
   const auto& truths = *truths_;
-  ASSERT_EQ(RunCommand(kCli + " batch" + Join(truths, 8) + " --model sphere --out-dir " + one + " --jobs 1").exit_code, 0);
-  ASSERT_EQ(RunCommand(kCli + " batch" + Join(truths, 8) + " --model sphere --out-dir " + two + " --jobs 2").exit_code, 0);
+  ASSERT_EQ(RunCommand(kCli + " batch" + Join(truths, 8) + " --model sphere --out-dir " + one +
+                       " --jobs 1")
+                .exit_code,
+            0);
+  ASSERT_EQ(RunCommand(kCli + " batch" + Join(truths, 8) + " --model sphere --out-dir " + two +
+                       " --jobs 2")
+                .exit_code,
+            0);
   for (size_t i = 0; i < 8; ++i) {
     const std::string a = Slurp(one + "/" + truths[i].name + ".model.json");
     EXPECT_FALSE(a.empty());
@@ -309,12 +342,13 @@ TEST_F(BatchCommand, ShardsAreDisjointAndCoverEveryInput) {
   const std::string list = out + "/inputs.list";
   const size_t n = 10;
   std::string manifest = "# ten clouds\n\n";
-  for (size_t i = 0; i < n; ++i) manifest += "  " + fs::relative((*truths_)[i].path, out).string() + "\n";
+  for (size_t i = 0; i < n; ++i)
+    manifest += "  " + fs::relative((*truths_)[i].path, out).string() + "\n";
   WriteText(list, manifest);
   std::set<std::string> seen;
   for (int shard = 1; shard <= 3; ++shard) {
-    const auto r = RunCommand(kCli + " batch --manifest " + list + " --model sphere --out-dir " + out +
-                              " --jobs 2 --shard " + std::to_string(shard) + "/3");
+    const auto r = RunCommand(kCli + " batch --manifest " + list + " --model sphere --out-dir " +
+                              out + " --jobs 2 --shard " + std::to_string(shard) + "/3");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto rows = SummaryRows(out + "/summary-" + std::to_string(shard) + "-of-3.csv");
     for (size_t i = 0; i < n; ++i) {
@@ -328,18 +362,24 @@ TEST_F(BatchCommand, ShardsAreDisjointAndCoverEveryInput) {
     }
   }
   EXPECT_EQ(seen.size(), n);
-  for (size_t i = 0; i < n; ++i) EXPECT_TRUE(testsupport::FileExists(out + "/" + (*truths_)[i].name + ".model.json"));
+  for (size_t i = 0; i < n; ++i)
+    EXPECT_TRUE(testsupport::FileExists(out + "/" + (*truths_)[i].name + ".model.json"));
   for (const std::string bad : {"0/3", "4/3", "1/0", "x/3", "1-3", "2/3x"})
-    EXPECT_EQ(RunCommand(kCli + " batch --manifest " + list + " --model sphere --out-dir " + out + " --shard " + bad)
-                  .exit_code, 2) << bad;
+    EXPECT_EQ(RunCommand(kCli + " batch --manifest " + list + " --model sphere --out-dir " + out +
+                         " --shard " + bad)
+                  .exit_code,
+              2)
+        << bad;
 }
 
 TEST_F(BatchCommand, ListsDirectoriesSortedThenManifestsInOrder) {
-  const std::string out = testsupport::ScratchDir("batch_order"), dir = testsupport::ScratchDir("batch_order_dir");
+  const std::string out = testsupport::ScratchDir("batch_order"),
+                    dir = testsupport::ScratchDir("batch_order_dir");
   const auto& t = *truths_;
   for (int i : {2, 0, 1}) fs::copy_file(t[i].path, dir + "/" + t[i].name + ".xyz");
   WriteText(dir + "/notes.md", "not a cloud: ignored in a directory\n");
-  WriteText(out + "/m.list", "# comment\n\n" + t[4].path + "\n  " + fs::relative(t[3].path, out).string() + "  \n");
+  WriteText(out + "/m.list",
+            "# comment\n\n" + t[4].path + "\n  " + fs::relative(t[3].path, out).string() + "  \n");
   // A word after --manifest FILE is an input again, not a second manifest.
   const auto r = RunCommand(kCli + " batch --manifest " + out + "/m.list " + t[5].path + " " + dir +
                             " --model sphere --out-dir " + out + "/res");
@@ -347,19 +387,24 @@ TEST_F(BatchCommand, ListsDirectoriesSortedThenManifestsInOrder) {
   const auto rows = ReadCsv(out + "/res/summary.csv");
   std::vector<std::string> inputs;
   for (size_t i = 1; i < rows.size(); ++i) inputs.push_back(rows[i][0]);
-  EXPECT_EQ(inputs, (std::vector<std::string>{t[5].path, dir + "/" + t[0].name + ".xyz", dir + "/" + t[1].name + ".xyz",
+  EXPECT_EQ(inputs, (std::vector<std::string>{t[5].path, dir + "/" + t[0].name + ".xyz",
+                                              dir + "/" + t[1].name + ".xyz",
                                               dir + "/" + t[2].name + ".xyz", t[4].path,
                                               out + "/" + fs::relative(t[3].path, out).string()}));
 }
 
 TEST_F(BatchCommand, AManifestLineMayNameItsOwnKind) {
   const std::string out = testsupport::ScratchDir("batch_kinds");
-  WriteText(out + "/cyl.truth", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "cylinder",
+  WriteText(out + "/cyl.truth",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "cylinder",
     "point": [0.5, -0.2, 0], "axis": [0, 0.6, 0.8], "radius": 0.7}})");
-  ASSERT_EQ(RunCommand(kCli + " sample " + out + "/cyl.truth --count 1500 --noise 0.002 --out '" + out + "/my cyl.xyz'")
-                .exit_code, 0);
+  ASSERT_EQ(RunCommand(kCli + " sample " + out + "/cyl.truth --count 1500 --noise 0.002 --out '" +
+                       out + "/my cyl.xyz'")
+                .exit_code,
+            0);
   WriteText(out + "/m.list", (*truths_)[0].path + "\n" + "my cyl.xyz\tcylinder\n");
-  const auto r = RunCommand(kCli + " batch --manifest " + out + "/m.list --model sphere --out-dir " + out + "/res");
+  const auto r = RunCommand(kCli + " batch --manifest " + out +
+                            "/m.list --model sphere --out-dir " + out + "/res");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_EQ(ReadJson(out + "/res/" + (*truths_)[0].name + ".model.json")["root"]["type"], "sphere");
   const json cylinder = ReadJson(out + "/res/my cyl.model.json")["root"];
@@ -367,15 +412,18 @@ TEST_F(BatchCommand, AManifestLineMayNameItsOwnKind) {
   EXPECT_NEAR(cylinder["radius"].get<double>(), 0.7, 0.005);
   EXPECT_NEAR(std::abs(cylinder["axis"][1].get<double>()), 0.6, 0.01);
   // --resume checks the kind of the line, not --model.
-  const auto again = RunCommand(kCli + " batch --manifest " + out + "/m.list --model sphere --out-dir " + out + "/res --resume");
+  const auto again = RunCommand(kCli + " batch --manifest " + out +
+                                "/m.list --model sphere --out-dir " + out + "/res --resume");
   EXPECT_NE(again.out.find("0 fitted, 2 skipped"), std::string::npos) << again.out;
   // A --fix field the line's kind lacks fails that input alone.
-  const auto fixed = RunCommand(kCli + " batch --manifest " + out + "/m.list --model sphere --fix radius=1 --fix center=0,0,0 --out-dir " +
-                                out + "/fixed");
+  const auto fixed = RunCommand(
+      kCli + " batch --manifest " + out +
+      "/m.list --model sphere --fix radius=1 --fix center=0,0,0 --out-dir " + out + "/fixed");
   EXPECT_EQ(fixed.exit_code, 1) << fixed.out << fixed.err;
   EXPECT_EQ(SummaryRows(out + "/fixed/summary.csv").at(out + "/my cyl.xyz")[1], "error");
   WriteText(out + "/bad.list", (*truths_)[0].path + "\n\n" + (*truths_)[1].path + "\tblob\n");
-  const auto bad = RunCommand(kCli + " batch --manifest " + out + "/bad.list --model sphere --out-dir " + out + "/bad");
+  const auto bad = RunCommand(kCli + " batch --manifest " + out +
+                              "/bad.list --model sphere --out-dir " + out + "/bad");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bad.list:3: unknown kind 'blob'"), std::string::npos) << bad.err;
 }
@@ -394,7 +442,8 @@ TEST_F(BatchCommand, InvalidUsageExits2AndWritesNothing) {
       {" --manifest /nonexistent/list.txt --model sphere --out-dir " + out, "list.txt"},
       {in + " --model sphere --out-dir " + out + " --jobs 0", "jobs"},
       {in + " " + dup_dir + " --model sphere --out-dir " + out, "cloud_000"},
-      {" " + testsupport::ScratchDir("batch_empty") + " --model sphere --out-dir " + out, "no cloud files"},
+      {" " + testsupport::ScratchDir("batch_empty") + " --model sphere --out-dir " + out,
+       "no cloud files"},
   };
   for (const Case& c : cases) {
     const auto r = RunCommand(kCli + " batch" + c.args);
@@ -409,35 +458,45 @@ TEST_F(BatchCommand, InvalidUsageExits2AndWritesNothing) {
 namespace {
 
 TEST_F(BatchCommand, ProgressOnATerminalIsOneUpdatingLine) {
-  if (RunCommand("command -v script").exit_code != 0) GTEST_SKIP() << "no `script` to give a terminal";
+  if (RunCommand("command -v script").exit_code != 0)
+    GTEST_SKIP() << "no `script` to give a terminal";
   const std::string out = testsupport::ScratchDir("batch_tty");
   // script(1) runs the batch with a pseudo-terminal as stdout and stderr.
-  const auto r = RunCommand("script -qec '" + kCli + " batch" + Join(*truths_, 4) + " --model sphere --out-dir " +
-                            out + " --jobs 2' /dev/null");
+  const auto r = RunCommand("script -qec '" + kCli + " batch" + Join(*truths_, 4) +
+                            " --model sphere --out-dir " + out + " --jobs 2' /dev/null");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("\r\033[K[4/4]"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("inputs/s"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("ETA"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("cloud_000 ok"), std::string::npos) << "no per-input lines on a terminal: " << r.out;
+  EXPECT_EQ(r.out.find("cloud_000 ok"), std::string::npos)
+      << "no per-input lines on a terminal: " << r.out;
 }
 
 #ifdef IMPLICITFIT_MPIEXEC
 TEST_F(BatchCommand, MpiRanksGiveTheSameModelsAsOneProcess) {
-  const std::string mpi = testsupport::ScratchDir("batch_mpi"), single = testsupport::ScratchDir("batch_mpi_single");
+  const std::string mpi = testsupport::ScratchDir("batch_mpi"),
+                    single = testsupport::ScratchDir("batch_mpi_single");
   const std::string bad = mpi + "_garbage.xyz";
   WriteText(bad, "not a cloud\n");
   const std::string inputs = Join(*truths_, 10) + " " + bad;
   // Open MPI refuses root unless told; --oversubscribe: more ranks than cores.
-  const std::string mpirun = std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ") +
-                             IMPLICITFIT_MPIEXEC + " --oversubscribe -np 3 ";
+  const std::string mpirun =
+      std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ") +
+      IMPLICITFIT_MPIEXEC + " --oversubscribe -np 3 ";
   const auto r = RunCommand(mpirun + kCli + " batch" + inputs + " --model sphere --out-dir " + mpi);
   EXPECT_EQ(r.exit_code, 1) << "one bad input: " << r.out << r.err;
-  EXPECT_NE(r.out.find("11 inputs: 10 fitted, 0 skipped, 1 failed"), std::string::npos) << r.out << r.err;
+  EXPECT_NE(r.out.find("11 inputs: 10 fitted, 0 skipped, 1 failed"), std::string::npos)
+      << r.out << r.err;
   EXPECT_NE(r.out.find("_garbage.xyz"), std::string::npos) << r.out;
   const size_t first = r.out.find("batch: 11 inputs");
-  EXPECT_EQ(r.out.find("batch: 11 inputs", first + 1), std::string::npos) << "one batch over the ranks, not three: " << r.out;
-  ASSERT_EQ(RunCommand(kCli + " batch" + inputs + " --model sphere --out-dir " + single + " --jobs 2").exit_code, 1);
-  const auto mpi_rows = SummaryRows(mpi + "/summary.csv"), single_rows = SummaryRows(single + "/summary.csv");
+  EXPECT_EQ(r.out.find("batch: 11 inputs", first + 1), std::string::npos)
+      << "one batch over the ranks, not three: " << r.out;
+  ASSERT_EQ(
+      RunCommand(kCli + " batch" + inputs + " --model sphere --out-dir " + single + " --jobs 2")
+          .exit_code,
+      1);
+  const auto mpi_rows = SummaryRows(mpi + "/summary.csv"),
+             single_rows = SummaryRows(single + "/summary.csv");
   ASSERT_EQ(mpi_rows.size(), 11u);
   for (const auto& [input, row] : single_rows) {
     ASSERT_EQ(mpi_rows.count(input), 1u) << input;
@@ -448,8 +507,10 @@ TEST_F(BatchCommand, MpiRanksGiveTheSameModelsAsOneProcess) {
     EXPECT_FALSE(Slurp(mpi + "/" + name).empty());
     EXPECT_EQ(Slurp(mpi + "/" + name), Slurp(single + "/" + name)) << name;
   }
-  const auto again = RunCommand(mpirun + kCli + " batch" + inputs + " --model sphere --out-dir " + mpi + " --resume");
-  EXPECT_NE(again.out.find("11 inputs: 0 fitted, 10 skipped, 1 failed"), std::string::npos) << again.out << again.err;
+  const auto again = RunCommand(mpirun + kCli + " batch" + inputs + " --model sphere --out-dir " +
+                                mpi + " --resume");
+  EXPECT_NE(again.out.find("11 inputs: 0 fitted, 10 skipped, 1 failed"), std::string::npos)
+      << again.out << again.err;
 }
 #endif
 

@@ -31,8 +31,11 @@ TEST(BernsteinEval, AgreesWithTheNaiveMultinomialSum) {
     for (const auto& v : corners) vertices.push_back({v[0], v[1], v[2]});
     const json doc = {{"format", "implicitfit-model"},
                       {"version", 1},
-                      {"root", {{"type", "bernstein_patch"}, {"degree", k}, {"vertices", vertices},
-                                {"control_points", b}}}};
+                      {"root",
+                       {{"type", "bernstein_patch"},
+                        {"degree", k},
+                        {"vertices", vertices},
+                        {"control_points", b}}}};
     WriteText(dir + "/model.json", doc.dump());
     std::ostringstream points;
     points.precision(17);

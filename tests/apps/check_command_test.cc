@@ -22,7 +22,8 @@ const std::string kCli = IMPLICITFIT_CLI;
 json PatchNode(int k, const std::array<Eigen::Vector3d, 4>& corners, const std::vector<double>& b) {
   json vertices = json::array();
   for (const auto& v : corners) vertices.push_back({v[0], v[1], v[2]});
-  return {{"type", "bernstein_patch"}, {"degree", k}, {"vertices", vertices}, {"control_points", b}};
+  return {
+      {"type", "bernstein_patch"}, {"degree", k}, {"vertices", vertices}, {"control_points", b}};
 }
 
 json Document(const std::vector<json>& patches) {
@@ -90,8 +91,9 @@ TEST(CheckCommand, VerdictsAndMarginsOnThousandsOfRandomPatches) {
 TEST(CheckCommand, JsonHasExactlyTheContractShape) {
   const std::string dir = testsupport::ScratchDir("check_shape");
   std::mt19937 rng(72);
-  WriteText(dir + "/a.json",
-            Document({PatchNode(2, testsupport::RandomCorners(rng), testsupport::RandomMixedPatch(rng, 2))}).dump());
+  WriteText(dir + "/a.json", Document({PatchNode(2, testsupport::RandomCorners(rng),
+                                                 testsupport::RandomMixedPatch(rng, 2))})
+                                 .dump());
   const auto r = RunCommand(kCli + " check --json " + dir + "/a.json");
   ASSERT_NE(r.exit_code, 2) << r.err;
   const nlohmann::ordered_json report = nlohmann::ordered_json::parse(r.out);
@@ -108,7 +110,8 @@ TEST(CheckCommand, JsonHasExactlyTheContractShape) {
   };
   EXPECT_TRUE(starts_with(keys(report), {"convex", "files"}));
   EXPECT_TRUE(starts_with(keys(report["files"][0]), {"file", "convex", "patches"}));
-  EXPECT_TRUE(starts_with(keys(report["files"][0]["patches"][0]), {"degree", "convex", "min_eigenvalue"}));
+  EXPECT_TRUE(
+      starts_with(keys(report["files"][0]["patches"][0]), {"degree", "convex", "min_eigenvalue"}));
 }
 
 // A quadric x^T Q x + 2 b.x + c has Hessian 2Q = k(k-1) E^-T A E^-1, so A^mu = 2/(k(k-1)) E^T Q E.
@@ -119,13 +122,15 @@ TEST(CheckCommand, QuadricPatchesGetTheirMatrixVerdict) {
   std::mt19937 rng(73);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const Eigen::Vector3d spectra[] = {Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(-1, 2, 3),
-                                     Eigen::Vector3d(0.2, 0.3, -0.1), Eigen::Vector3d(0.5, 0.5, 0.5)};
+                                     Eigen::Vector3d(0.2, 0.3, -0.1),
+                                     Eigen::Vector3d(0.5, 0.5, 0.5)};
   for (const Eigen::Vector3d& spectrum : spectra) {
     const auto corners = testsupport::RandomCorners(rng);
     const Eigen::Matrix3d q = testsupport::RandomSymmetric(rng, spectrum);
     Eigen::Matrix4d g = Eigen::Matrix4d::Zero();
     g.topLeftCorner<3, 3>() = q;
-    g.topRightCorner<3, 1>() = g.bottomLeftCorner<1, 3>().transpose() = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    g.topRightCorner<3, 1>() = g.bottomLeftCorner<1, 3>().transpose() =
+        Eigen::Vector3d(u(rng), u(rng), u(rng));
     g(3, 3) = u(rng);
     std::vector<double> b;
     for (const oracle::MultiIndex& l : oracle::DesignOrder(2)) {
@@ -141,12 +146,14 @@ TEST(CheckCommand, QuadricPatchesGetTheirMatrixVerdict) {
     const auto r = RunCommand(kCli + " check --json " + dir + "/q.json");
     Eigen::Matrix3d e;
     for (int i = 0; i < 3; ++i) e.col(i) = corners[i] - corners[3];
-    const double lmin = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(e.transpose() * q * e).eigenvalues()(0);
+    const double lmin =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(e.transpose() * q * e).eigenvalues()(0);
     const bool definite = spectrum.minCoeff() > 0;
     EXPECT_EQ(r.exit_code, definite ? 0 : 1) << r.err;
     const json report = json::parse(r.out);
     EXPECT_EQ(report["convex"], definite);
-    EXPECT_NEAR(report["files"][0]["patches"][0]["min_eigenvalue"].get<double>(), lmin, 1e-9 * std::abs(lmin));
+    EXPECT_NEAR(report["files"][0]["patches"][0]["min_eigenvalue"].get<double>(), lmin,
+                1e-9 * std::abs(lmin));
   }
 }
 
@@ -156,7 +163,8 @@ TEST(CheckCommand, ConvexFilesExit0AndDegreeOneIsConvexWithZeroMargin) {
   std::vector<json> patches = {PatchNode(1, testsupport::RandomCorners(rng), {1, -2, 0.5, 3})};
   while (patches.size() < 20) {
     const std::vector<double> b = testsupport::RandomMixedPatch(rng, 3);
-    if (oracle::Certify(3, b).convex) patches.push_back(PatchNode(3, testsupport::RandomCorners(rng), b));
+    if (oracle::Certify(3, b).convex)
+      patches.push_back(PatchNode(3, testsupport::RandomCorners(rng), b));
   }
   WriteText(dir + "/c.json", Document(patches).dump());
   const auto r = RunCommand(kCli + " check --json " + dir + "/c.json");
@@ -176,20 +184,25 @@ TEST(CheckCommand, ConvexFilesExit0AndDegreeOneIsConvexWithZeroMargin) {
 TEST(CheckCommand, UnreadableOrInvalidInputExits2NamingTheFileWithNoOutput) {
   const std::string dir = testsupport::ScratchDir("check_bad");
   std::mt19937 rng(75);
-  WriteText(dir + "/good.json",
-            Document({PatchNode(2, testsupport::RandomCorners(rng), testsupport::RandomMixedPatch(rng, 2))}).dump());
-  json flat = Document({PatchNode(2, testsupport::RandomCorners(rng), std::vector<double>(10, 1.0))});
+  WriteText(dir + "/good.json", Document({PatchNode(2, testsupport::RandomCorners(rng),
+                                                    testsupport::RandomMixedPatch(rng, 2))})
+                                    .dump());
+  json flat =
+      Document({PatchNode(2, testsupport::RandomCorners(rng), std::vector<double>(10, 1.0))});
   flat["root"]["vertices"][3] = flat["root"]["vertices"][0];
   WriteText(dir + "/flat.json", flat.dump());
-  json short_cp = Document({PatchNode(3, testsupport::RandomCorners(rng), std::vector<double>(10, 1.0))});
+  json short_cp =
+      Document({PatchNode(3, testsupport::RandomCorners(rng), std::vector<double>(10, 1.0))});
   WriteText(dir + "/short.json", short_cp.dump());
   WriteText(dir + "/broken.json", "{\"format\": ");
   struct Case {
     std::string args, fragment;
   } cases[] = {
       {dir + "/missing.json", "missing.json"},
-      {dir + "/good.json " + dir + "/flat.json", "flat.json: invalid model: root.vertices: tetrahedron is degenerate"},
-      {dir + "/short.json", "short.json: invalid model: root.control_points: must be an array of 20"},
+      {dir + "/good.json " + dir + "/flat.json",
+       "flat.json: invalid model: root.vertices: tetrahedron is degenerate"},
+      {dir + "/short.json",
+       "short.json: invalid model: root.control_points: must be an array of 20"},
       {dir + "/broken.json --json", "broken.json: invalid JSON"},
   };
   for (const Case& c : cases) {
@@ -209,8 +222,9 @@ TEST(CheckCommand, SamplingNeverContradictsTheCertificate) {
   for (int i = 0; i < 400; ++i) {
     const int k = 2 + i % 3;
     // Every patch on the tetrahedron around the origin, where the random patches have zeros.
-    const std::array<Eigen::Vector3d, 4> corners = {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, -1, -1),
-                                                    Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(-1, -1, 1)};
+    const std::array<Eigen::Vector3d, 4> corners = {
+        Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, -1, -1), Eigen::Vector3d(-1, 1, -1),
+        Eigen::Vector3d(-1, -1, 1)};
     patches.push_back(PatchNode(k, corners, testsupport::RandomMixedPatch(rng, k)));
   }
   WriteText(dir + "/s.json", Document(patches).dump());

@@ -19,11 +19,16 @@ json Plane(double nx, double ny, double nz, double d) {
   return {{"type", "plane"}, {"normal", {nx, ny, nz}}, {"offset", d}};
 }
 
-json Document(const json& root) { return {{"format", "implicitfit-model"}, {"version", 1}, {"root", root}}; }
+json Document(const json& root) {
+  return {{"format", "implicitfit-model"}, {"version", 1}, {"root", root}};
+}
 
 TEST(CheckTree, TheWitnessTreeIsNotCertifiedAndExits1) {
   const std::string dir = testsupport::ScratchDir("check_tree_witness");
-  const json witness = Document({{"type", "intersection"}, {"delta", 1.0}, {"epsilon", 1.0}, {"order", 3},
+  const json witness = Document({{"type", "intersection"},
+                                 {"delta", 1.0},
+                                 {"epsilon", 1.0},
+                                 {"order", 3},
                                  {"children", {Plane(1, 0, 0, 0), Plane(0, 1, 0, 0)}}});
   WriteText(dir + "/w.json", witness.dump());
   const auto r = RunCommand(kCli + " check --json " + dir + "/w.json");
@@ -52,18 +57,23 @@ TEST(CheckTree, TheWitnessTreeIsNotCertifiedAndExits1) {
   EXPECT_EQ(c.exit_code, 0) << c.err;
   EXPECT_EQ(json::parse(c.out)["files"][0]["tree"]["class"], "convex-function");
   // A torus alone: not certified (it used to be reported convex).
-  WriteText(dir + "/t.json", Document({{"type", "torus"}, {"center", {0, 0, 0}}, {"axis", {0, 0, 1}},
-                                       {"major_radius", 1.0}, {"minor_radius", 0.3}}).dump());
+  WriteText(dir + "/t.json", Document({{"type", "torus"},
+                                       {"center", {0, 0, 0}},
+                                       {"axis", {0, 0, 1}},
+                                       {"major_radius", 1.0},
+                                       {"minor_radius", 0.3}})
+                                 .dump());
   EXPECT_EQ(RunCommand(kCli + " check " + dir + "/t.json").exit_code, 1);
 }
 
 TEST(CheckTree, PatchesCarryTheNewCertificateFields) {
   const std::string dir = testsupport::ScratchDir("check_tree_patch");
   // |x|^2 - 0.25 on the reference tetrahedron (degree 2): b_ij = x_i . x_j - 0.25.
-  const json patch = {{"type", "bernstein_patch"},
-                      {"degree", 2},
-                      {"vertices", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}}},
-                      {"control_points", {0.75, -0.25, -0.25, -0.25, 0.75, -0.25, -0.25, 0.75, -0.25, -0.25}}};
+  const json patch = {
+      {"type", "bernstein_patch"},
+      {"degree", 2},
+      {"vertices", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}}},
+      {"control_points", {0.75, -0.25, -0.25, -0.25, 0.75, -0.25, -0.25, 0.75, -0.25, -0.25}}};
   WriteText(dir + "/p.json", Document(patch).dump());
   const auto r = RunCommand(kCli + " check --json " + dir + "/p.json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -83,12 +93,12 @@ TEST(CheckTree, PatchesCarryTheNewCertificateFields) {
 TEST(FitShapeControl, BadOptionsExit2) {
   const std::string dir = testsupport::ScratchDir("fit_shape_bad");
   WriteText(dir + "/c.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n");
-  for (const std::string args : {"--model quadric-patch --vertex-normal 5=0,0,1",
-                                 "--model quadric-patch --vertex-normal 1=0,0",
-                                 "--model quadric-patch --through-edge 2,2",
-                                 "--model quadric-patch --through-vertex 1 --convex",
-                                 "--model quadric-patch --vertex-normal 1=0,0,1 --vertex-normal 2=0,0,1",
-                                 "--model sphere --through-vertex 1"}) {
+  for (const std::string args :
+       {"--model quadric-patch --vertex-normal 5=0,0,1",
+        "--model quadric-patch --vertex-normal 1=0,0", "--model quadric-patch --through-edge 2,2",
+        "--model quadric-patch --through-vertex 1 --convex",
+        "--model quadric-patch --vertex-normal 1=0,0,1 --vertex-normal 2=0,0,1",
+        "--model sphere --through-vertex 1"}) {
     const auto r = RunCommand(kCli + " fit " + dir + "/c.xyz --out " + dir + "/m.json " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_FALSE(testsupport::FileExists(dir + "/m.json")) << args;

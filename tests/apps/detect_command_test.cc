@@ -26,14 +26,16 @@ TEST(DetectCli, GeneratedSceneWritesSceneLabelsAndPly) {
   o.seed = 2;
   const GeneratedScene g = GenerateScene(o);
   WriteXyzFile(g.cloud, dir + "/scene.xyz");
-  const auto r = RunCommand(kCli + " detect " + dir + "/scene.xyz --out " + dir + "/scene.json --labels " + dir +
-                            "/labels.txt --ply " + dir + "/seg.ply --report " + dir + "/report.json --seed 3");
+  const auto r = RunCommand(kCli + " detect " + dir + "/scene.xyz --out " + dir +
+                            "/scene.json --labels " + dir + "/labels.txt --ply " + dir +
+                            "/seg.ply --report " + dir + "/report.json --seed 3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Scene scene = ReadSceneFile(dir + "/scene.json");
   EXPECT_EQ(scene.points, static_cast<int>(g.cloud.size()));
   EXPECT_GE(scene.primitives.size(), 5u);
   const std::vector<int> labels =
-      ReadLabelsFile(dir + "/labels.txt", static_cast<int>(scene.primitives.size()), static_cast<long>(g.cloud.size()));
+      ReadLabelsFile(dir + "/labels.txt", static_cast<int>(scene.primitives.size()),
+                     static_cast<long>(g.cloud.size()));
   std::vector<int> count(scene.primitives.size(), 0);
   int unassigned = 0;
   for (int l : labels) l >= 0 ? ++count[l] : ++unassigned;
@@ -64,8 +66,8 @@ TEST(DetectCli, RandomPointsExit1WithoutScene) {
   std::ofstream out(dir + "/random.xyz");
   for (int i = 0; i < 2000; ++i) out << u(rng) << " " << u(rng) << " " << u(rng) << "\n";
   out.close();
-  const auto r = RunCommand(kCli + " detect " + dir + "/random.xyz --out " + dir + "/scene.json --labels " + dir +
-                            "/labels.txt");
+  const auto r = RunCommand(kCli + " detect " + dir + "/random.xyz --out " + dir +
+                            "/scene.json --labels " + dir + "/labels.txt");
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.err.find("random.xyz"), std::string::npos);
   EXPECT_FALSE(FileExists(dir + "/scene.json"));
@@ -82,16 +84,19 @@ TEST(DetectCli, HostileInputsExit2NamingTheFileWithoutOutput) {
       {"garbage.xyz", "not a cloud\n"},
       {"nan.xyz", "1 2 3\n4 nan 6\n7 8 9\n"},
       {"random.ply", noise},
-      {"truncated.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\n"
-                        "property float y\nproperty float z\nend_header\n" + std::string(50, '\1')},
+      {"truncated.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\n"
+       "property float y\nproperty float z\nend_header\n" +
+           std::string(50, '\1')},
   };
   for (const auto& [name, content] : files) testsupport::WriteText(dir + "/" + name, content);
   std::vector<std::string> names;
   for (const auto& f : files) names.push_back(f.first);
   names.push_back("missing.xyz");
   for (const std::string& name : names) {
-    const auto r = RunCommand(kCli + " detect " + dir + "/" + name + " --out " + dir + "/scene.json --labels " + dir +
-                              "/labels.txt --ply " + dir + "/seg.ply");
+    const auto r =
+        RunCommand(kCli + " detect " + dir + "/" + name + " --out " + dir +
+                   "/scene.json --labels " + dir + "/labels.txt --ply " + dir + "/seg.ply");
     EXPECT_EQ(r.exit_code, 2) << name << ": " << r.err;
     EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
     EXPECT_FALSE(FileExists(dir + "/scene.json")) << name;
@@ -100,7 +105,8 @@ TEST(DetectCli, HostileInputsExit2NamingTheFileWithoutOutput) {
   }
   // Bad options: an unknown kind exits 2 before reading anything.
   testsupport::WriteText(dir + "/ok.xyz", "0 0 0\n1 0 0\n0 1 0\n");
-  const auto k = RunCommand(kCli + " detect " + dir + "/ok.xyz --out " + dir + "/scene.json --kinds plane,blob");
+  const auto k = RunCommand(kCli + " detect " + dir + "/ok.xyz --out " + dir +
+                            "/scene.json --kinds plane,blob");
   EXPECT_EQ(k.exit_code, 2);
   EXPECT_NE(k.err.find("blob"), std::string::npos);
 }
@@ -122,8 +128,9 @@ TEST(DetectCli, BatchSceneWritesSceneAndLabelsPerInputAndResumes) {
   for (const std::string name : {"s4", "s5"}) {
     const Scene scene = ReadSceneFile(dir + "/out/" + name + ".scene.json");
     EXPECT_GE(scene.primitives.size(), 5u) << name;
-    const std::vector<int> labels = ReadLabelsFile(dir + "/out/" + name + ".labels.txt",
-                                                   static_cast<int>(scene.primitives.size()), scene.points);
+    const std::vector<int> labels =
+        ReadLabelsFile(dir + "/out/" + name + ".labels.txt",
+                       static_cast<int>(scene.primitives.size()), scene.points);
     EXPECT_EQ(static_cast<int>(labels.size()), scene.points);
   }
   EXPECT_FALSE(FileExists(dir + "/out/bad.scene.json"));

@@ -52,7 +52,10 @@ RandomTree MakeTree(std::mt19937& rng, int depth) {
     if (op == 1) return oracle::Intersection(fa(x), fb(x), delta, eps, order);
     return oracle::Difference(fa(x), fb(x), delta, eps, order);
   };
-  return {{{"type", names[op]}, {"children", {a.node, b.node}}, {"delta", delta}, {"epsilon", eps},
+  return {{{"type", names[op]},
+           {"children", {a.node, b.node}},
+           {"delta", delta},
+           {"epsilon", eps},
            {"order", order}},
           f};
 }
@@ -106,7 +109,8 @@ TEST(EvalCommand, BadInputsExit2NamingTheFileWithNoOutput) {
   WriteText(dir + "/good.json", R"({"format": "implicitfit-model", "version": 1,
     "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
   WriteText(dir + "/good.xyz", "0 0 0\n1 1 1\n");
-  WriteText(dir + "/broken.json", "{\"format\": \"implicitfit-model\",\n \"version\": 1,\n \"root\": {");
+  WriteText(dir + "/broken.json",
+            "{\"format\": \"implicitfit-model\",\n \"version\": 1,\n \"root\": {");
   WriteText(dir + "/negative.json", R"({"format": "implicitfit-model", "version": 1,
     "root": {"type": "sphere", "center": [0, 0, 0], "radius": -1}})");
   WriteText(dir + "/bad.xyz", "0 0 0\n1 1 nan\n");

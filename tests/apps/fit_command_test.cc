@@ -21,10 +21,13 @@ TEST(FitCommand, SphereFromASampledPartialViewWithOutliers) {
   const std::string dir = testsupport::ScratchDir("fit_sphere");
   WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1,
     "root": {"type": "sphere", "center": [1, 2, 3], "radius": 0.5}})");
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 3000 --noise 0.0025 --outliers 0.2 --seed 4" +
-                       " --view 0,0,1 --view-angle 70 --out " + dir + "/cloud.xyz").exit_code, 0);
-  const auto r = RunCommand(kCli + " fit " + dir + "/cloud.xyz --model sphere --out " + dir + "/fit.json --report " +
-                            dir + "/report.json");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir +
+                       "/truth.json --count 3000 --noise 0.0025 --outliers 0.2 --seed 4" +
+                       " --view 0,0,1 --view-angle 70 --out " + dir + "/cloud.xyz")
+                .exit_code,
+            0);
+  const auto r = RunCommand(kCli + " fit " + dir + "/cloud.xyz --model sphere --out " + dir +
+                            "/fit.json --report " + dir + "/report.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json m = ReadJson(dir + "/fit.json")["root"];
   EXPECT_EQ(m["type"], "sphere");
@@ -39,15 +42,21 @@ TEST(FitCommand, SphereFromASampledPartialViewWithOutliers) {
 
 TEST(FitCommand, InitFitsDeltaAndEpsilonOfABlendedModel) {
   const std::string dir = testsupport::ScratchDir("fit_init");
-  WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "union",
+  WriteText(dir + "/truth.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "union",
     "delta": 0.3, "epsilon": 0.2, "order": 2, "children": [
       {"type": "sphere", "center": [0, 0, 0], "radius": 1}, {"type": "sphere", "center": [1.6, 0, 0], "radius": 0.8}]}})");
-  WriteText(dir + "/init.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "union",
+  WriteText(dir + "/init.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "union",
     "delta": 0.5, "epsilon": 0.1, "order": 2, "children": [
       {"type": "sphere", "center": [0.05, 0, 0.02], "radius": 0.95}, {"type": "sphere", "center": [1.55, 0.03, 0], "radius": 0.85}]}})");
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 4000 --noise 0.002 --seed 2 --out " + dir +
-                       "/cloud.xyz").exit_code, 0);
-  const auto r = RunCommand(kCli + " fit " + dir + "/cloud.xyz --init " + dir + "/init.json --out " + dir + "/fit.json");
+  ASSERT_EQ(
+      RunCommand(kCli + " sample " + dir +
+                 "/truth.json --count 4000 --noise 0.002 --seed 2 --out " + dir + "/cloud.xyz")
+          .exit_code,
+      0);
+  const auto r = RunCommand(kCli + " fit " + dir + "/cloud.xyz --init " + dir +
+                            "/init.json --out " + dir + "/fit.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json m = ReadJson(dir + "/fit.json")["root"];
   EXPECT_NEAR(m["delta"].get<double>(), 0.3, 0.03);
@@ -60,17 +69,21 @@ TEST(FitCommand, ConvexCubicPatchPassesCheck) {
   const std::string dir = testsupport::ScratchDir("fit_convex");
   WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1,
     "root": {"type": "ellipsoid", "center": [0, 0, 0], "radii": [1.5, 1, 0.7], "axes": [[1, 0, 0], [0, 1, 0]]}})");
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 1500 --noise 0.005 --view 0,0,1 --view-angle 50" +
-                       " --out " + dir + "/cap.xyz").exit_code, 0);
-  const auto r = RunCommand(kCli + " fit " + dir + "/cap.xyz --model cubic-patch --convex --out " + dir +
-                            "/patch.json --report " + dir + "/report.json");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir +
+                       "/truth.json --count 1500 --noise 0.005 --view 0,0,1 --view-angle 50" +
+                       " --out " + dir + "/cap.xyz")
+                .exit_code,
+            0);
+  const auto r = RunCommand(kCli + " fit " + dir + "/cap.xyz --model cubic-patch --convex --out " +
+                            dir + "/patch.json --report " + dir + "/report.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto check = RunCommand(kCli + " check " + dir + "/patch.json --json");
   EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
   EXPECT_TRUE(json::parse(check.out)["convex"].get<bool>());
   const json report = ReadJson(dir + "/report.json");
   EXPECT_LE(report["rms_distance"].get<double>(), 1.5 * 0.005);
-  EXPECT_LE(report["rms_distance"].get<double>(), 1.1 * report["unconstrained_rms_distance"].get<double>());
+  EXPECT_LE(report["rms_distance"].get<double>(),
+            1.1 * report["unconstrained_rms_distance"].get<double>());
 }
 
 TEST(FitCommand, FailuresExit1WithAReasonAndNoModel) {
@@ -78,7 +91,8 @@ TEST(FitCommand, FailuresExit1WithAReasonAndNoModel) {
   std::string line;
   for (int i = 0; i < 200; ++i) line += std::to_string(i * 0.01) + " 0 0 0 0 1\n";  // collinear
   WriteText(dir + "/line.xyz", line);
-  const auto r = RunCommand(kCli + " fit " + dir + "/line.xyz --model sphere --out " + dir + "/fit.json");
+  const auto r =
+      RunCommand(kCli + " fit " + dir + "/line.xyz --model sphere --out " + dir + "/fit.json");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("line.xyz"), std::string::npos) << r.err;
   EXPECT_FALSE(testsupport::FileExists(dir + "/fit.json"));
@@ -87,11 +101,25 @@ TEST(FitCommand, FailuresExit1WithAReasonAndNoModel) {
 TEST(FitCommand, InvalidOptionsExit2) {
   const std::string dir = testsupport::ScratchDir("fit_usage");
   WriteText(dir + "/c.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n");
-  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model blob --out " + dir + "/m.json").exit_code, 2);
-  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --convex --out " + dir + "/m.json").exit_code, 2);
-  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --fix radius=x --out " + dir + "/m.json").exit_code, 2);
-  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --fix colour=1 --out " + dir + "/m.json").exit_code, 2);
-  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model quadric-patch --degree 7 --out " + dir + "/m.json").exit_code, 2);
+  EXPECT_EQ(
+      RunCommand(kCli + " fit " + dir + "/c.xyz --model blob --out " + dir + "/m.json").exit_code,
+      2);
+  EXPECT_EQ(
+      RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --convex --out " + dir + "/m.json")
+          .exit_code,
+      2);
+  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --fix radius=x --out " + dir +
+                       "/m.json")
+                .exit_code,
+            2);
+  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model sphere --fix colour=1 --out " + dir +
+                       "/m.json")
+                .exit_code,
+            2);
+  EXPECT_EQ(RunCommand(kCli + " fit " + dir + "/c.xyz --model quadric-patch --degree 7 --out " +
+                       dir + "/m.json")
+                .exit_code,
+            2);
   EXPECT_FALSE(testsupport::FileExists(dir + "/m.json"));
 }
 
@@ -103,8 +131,14 @@ TEST(SampleCommand, WritesPlyAndXyzThatReadBackTheSame) {
   const std::string dir = testsupport::ScratchDir("sample_formats");
   WriteText(dir + "/m.json", R"({"format": "implicitfit-model", "version": 1,
     "root": {"type": "torus", "center": [0, 0, 0], "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 0.3}})");
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/m.json --count 500 --seed 9 --out " + dir + "/a.xyz").exit_code, 0);
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/m.json --count 500 --seed 9 --out " + dir + "/a.ply").exit_code, 0);
+  ASSERT_EQ(
+      RunCommand(kCli + " sample " + dir + "/m.json --count 500 --seed 9 --out " + dir + "/a.xyz")
+          .exit_code,
+      0);
+  ASSERT_EQ(
+      RunCommand(kCli + " sample " + dir + "/m.json --count 500 --seed 9 --out " + dir + "/a.ply")
+          .exit_code,
+      0);
   // Both files hold points on the torus: eval prints |f| < 1e-9 for every one of them.
   for (const char* name : {"/a.xyz", "/a.ply"}) {
     const auto r = RunCommand(kCli + " eval " + dir + "/m.json " + dir + name);
@@ -118,7 +152,9 @@ TEST(SampleCommand, WritesPlyAndXyzThatReadBackTheSame) {
     }
     EXPECT_EQ(count, 500) << name;
   }
-  EXPECT_EQ(RunCommand(kCli + " sample " + dir + "/m.json --count 5 --out " + dir + "/a.obj").exit_code, 2);
+  EXPECT_EQ(
+      RunCommand(kCli + " sample " + dir + "/m.json --count 5 --out " + dir + "/a.obj").exit_code,
+      2);
   EXPECT_FALSE(testsupport::FileExists(dir + "/a.obj"));
 }
 

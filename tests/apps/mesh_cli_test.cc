@@ -20,10 +20,11 @@ const std::string kCli = IMPLICITFIT_CLI;
 
 std::string SphereCloud(const std::string& dir, const std::string& name, double radius, int seed) {
   const std::string truth = dir + "/" + name + ".truth.json", cloud = dir + "/" + name + ".xyz";
-  WriteText(truth, json({{"format", "implicitfit-model"},
-                         {"version", 1},
-                         {"root", {{"type", "sphere"}, {"center", {0.1, -0.2, 0.3}}, {"radius", radius}}}})
-                       .dump());
+  WriteText(truth,
+            json({{"format", "implicitfit-model"},
+                  {"version", 1},
+                  {"root", {{"type", "sphere"}, {"center", {0.1, -0.2, 0.3}}, {"radius", radius}}}})
+                .dump());
   const auto r = RunCommand(kCli + " sample " + truth + " --count 3000 --noise 0.001 --seed " +
                             std::to_string(seed) + " --out " + cloud);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -33,8 +34,9 @@ std::string SphereCloud(const std::string& dir, const std::string& name, double 
 TEST(MeshCli, ConvexFitIsCertifiedAndCheckAgrees) {
   const std::string dir = testsupport::ScratchDir("mesh_fit");
   const std::string cloud = SphereCloud(dir, "sphere", 1.0, 1);
-  const auto fit = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --convex --out " + dir +
-                              "/m.json --report " + dir + "/r.json");
+  const auto fit =
+      RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --convex --out " + dir +
+                 "/m.json --report " + dir + "/r.json");
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   const json report = json::parse(Slurp(dir + "/r.json"));
   EXPECT_TRUE(report["certified_convex"].get<bool>());
@@ -74,13 +76,15 @@ TEST(MeshCli, ConcaveKinkIsReportedNotConvex) {
     const auto bt = implicitfit::QuadricToBernstein(t < 6 ? left : right, g.TetrahedronOf(t), 2);
     b.insert(b.end(), bt.begin(), bt.end());
   }
-  const json doc = {{"format", "implicitfit-model"},
-                    {"version", 1},
-                    {"root", {{"type", "bernstein_mesh"},
-                              {"degree", 2},
-                              {"grid", {{"origin", {-1.0, -0.5, -0.5}}, {"cell", 1.0}, {"cells", {2, 1, 1}}}},
-                              {"continuity", 0},
-                              {"control_points", b}}}};
+  const json doc = {
+      {"format", "implicitfit-model"},
+      {"version", 1},
+      {"root",
+       {{"type", "bernstein_mesh"},
+        {"degree", 2},
+        {"grid", {{"origin", {-1.0, -0.5, -0.5}}, {"cell", 1.0}, {"cells", {2, 1, 1}}}},
+        {"continuity", 0},
+        {"control_points", b}}}};
   WriteText(dir + "/kink.json", doc.dump());
   const auto check = RunCommand(kCli + " check " + dir + "/kink.json --json --sample 3000");
   EXPECT_EQ(check.exit_code, 1) << check.err;
@@ -95,10 +99,12 @@ TEST(MeshCli, ConcaveKinkIsReportedNotConvex) {
 TEST(MeshCli, InvalidOptionsExit2AndNoModel) {
   const std::string dir = testsupport::ScratchDir("mesh_bad");
   const std::string cloud = SphereCloud(dir, "s", 1.0, 2);
-  auto r = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --convex --continuity 0 --out " + dir + "/m.json");
+  auto r = RunCommand(kCli + " fit " + cloud +
+                      " --model patch-mesh --convex --continuity 0 --out " + dir + "/m.json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--continuity"), std::string::npos) << r.err;
-  r = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --cell 0.5 --out " + dir + "/m.json");
+  r = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --cell 0.5 --out " + dir +
+                 "/m.json");
   EXPECT_EQ(r.exit_code, 2);
   r = RunCommand(kCli + " fit " + dir + "/missing.xyz --model patch-mesh --out " + dir + "/m.json");
   EXPECT_EQ(r.exit_code, 2);
@@ -110,23 +116,27 @@ TEST(MeshCli, BatchFitsMeshesAndPatchesAndResumes) {
   const std::string a = SphereCloud(dir, "a", 1.0, 3), b = SphereCloud(dir, "b", 0.8, 4);
   WriteText(dir + "/bad.xyz", "1 2\n");
   const std::string out = dir + "/out";
-  auto r = RunCommand(kCli + " batch " + a + " " + b + " " + dir + "/bad.xyz --model patch-mesh --cells 2 --convex "
-                      "--out-dir " + out + " --jobs 1");
+  auto r = RunCommand(kCli + " batch " + a + " " + b + " " + dir +
+                      "/bad.xyz --model patch-mesh --cells 2 --convex "
+                      "--out-dir " +
+                      out + " --jobs 1");
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // the bad input fails alone
   for (const char* name : {"a", "b"}) {
     const json rep = json::parse(Slurp(out + "/" + name + ".report.json"));
     EXPECT_TRUE(rep["certified_convex"].get<bool>()) << name;
-    EXPECT_EQ(json::parse(Slurp(out + "/" + name + ".model.json"))["root"]["type"], "bernstein_mesh");
+    EXPECT_EQ(json::parse(Slurp(out + "/" + name + ".model.json"))["root"]["type"],
+              "bernstein_mesh");
   }
   EXPECT_FALSE(FileExists(out + "/bad.model.json"));
-  r = RunCommand(kCli + " batch " + a + " " + b + " --model patch-mesh --cells 2 --convex --out-dir " + out +
-                 " --resume --jobs 1");
+  r = RunCommand(kCli + " batch " + a + " " + b +
+                 " --model patch-mesh --cells 2 --convex --out-dir " + out + " --resume --jobs 1");
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   const std::string summary = Slurp(out + "/summary.csv");
   EXPECT_NE(summary.find("a.xyz,skipped"), std::string::npos) << summary;
   EXPECT_NE(summary.find("b.xyz,skipped"), std::string::npos) << summary;
   const std::string out2 = dir + "/out2";
-  r = RunCommand(kCli + " batch " + a + " " + b + " --model quadric-patch --convex --out-dir " + out2);
+  r = RunCommand(kCli + " batch " + a + " " + b + " --model quadric-patch --convex --out-dir " +
+                 out2);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   const json rep = json::parse(Slurp(out2 + "/a.report.json"));
   EXPECT_TRUE(rep["certified_convex"].get<bool>());

@@ -24,16 +24,20 @@ long HeaderCount(const std::string& ply, const std::string& element) {
 
 TEST(MeshCommand, MeshesEveryModelKindIntoABinaryPlyWithFaces) {
   const std::string dir = ScratchDir("mesh_kinds");
-  WriteText(dir + "/sphere.json",
-            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
-  WriteText(dir + "/half.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection",
+  WriteText(
+      dir + "/sphere.json",
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
+  WriteText(dir + "/half.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection",
     "delta": 0.1, "epsilon": 0.1, "order": 0, "children": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
     {"type": "plane", "normal": [0, 0, 1], "offset": 0}]}})");
-  WriteText(dir + "/patch.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "bernstein_patch",
+  WriteText(dir + "/patch.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "bernstein_patch",
     "degree": 2, "vertices": [[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, 0]],
     "control_points": [0.5, -0.2, -0.2, -0.3, 0.5, -0.2, -0.3, 0.5, -0.3, -0.1]}})");
   for (const std::string name : {"sphere", "half", "patch"}) {
-    const auto r = RunCommand(kCli + " mesh " + dir + "/" + name + ".json --out " + dir + "/" + name + ".ply");
+    const auto r =
+        RunCommand(kCli + " mesh " + dir + "/" + name + ".json --out " + dir + "/" + name + ".ply");
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
     const std::string ply = Slurp(dir + "/" + name + ".ply");
     ASSERT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u) << name;
@@ -47,9 +51,11 @@ TEST(MeshCommand, MeshesEveryModelKindIntoABinaryPlyWithFaces) {
 
 TEST(MeshCommand, BadInputExitsTwoWithoutAFile) {
   const std::string dir = ScratchDir("mesh_bad");
-  WriteText(dir + "/sphere.json",
-            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
-  WriteText(dir + "/broken.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere"}})");
+  WriteText(
+      dir + "/sphere.json",
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
+  WriteText(dir + "/broken.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere"}})");
   struct Case {
     std::string args, message;
   } cases[] = {

@@ -26,7 +26,8 @@ std::string TenPointSphere(bool with_stray) {
   const double golden = M_PI * (3 - std::sqrt(5.0));
   for (int i = 0; i < 9; ++i) {
     const double z = 1 - 2 * (i + 0.5) / 9, r = std::sqrt(1 - z * z);
-    s << 1 + 2 * r * std::cos(golden * i) << " " << -2 + 2 * r * std::sin(golden * i) << " " << 0.5 + 2 * z << "\n";
+    s << 1 + 2 * r * std::cos(golden * i) << " " << -2 + 2 * r * std::sin(golden * i) << " "
+      << 0.5 + 2 * z << "\n";
     if (i == 4 && with_stray) s << 1.7 << " " << -1.6 << " " << 0.2 << "\n";
   }
   return s.str();
@@ -35,8 +36,8 @@ std::string TenPointSphere(bool with_stray) {
 TEST(MetrologyCli, TenPointSphereWithAStrayPoint) {
   const std::string dir = testsupport::ScratchDir("cmm_sphere");
   WriteText(dir + "/ball.xyz", TenPointSphere(true));
-  const auto r = RunCommand(kCli + " fit " + dir + "/ball.xyz --model sphere --out " + dir + "/fit.json --report " +
-                            dir + "/report.json");
+  const auto r = RunCommand(kCli + " fit " + dir + "/ball.xyz --model sphere --out " + dir +
+                            "/fit.json --report " + dir + "/report.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json m = ReadJson(dir + "/fit.json")["root"];
   EXPECT_NEAR(m["center"][0].get<double>(), 1.0, 1e-3);
@@ -47,15 +48,16 @@ TEST(MetrologyCli, TenPointSphereWithAStrayPoint) {
   EXPECT_EQ(report["estimator"], "robust");
   EXPECT_TRUE(report["points_only"].get<bool>());
   EXPECT_EQ(report["inliers"], 9);
-  EXPECT_NE(report["normals"].get<std::string>().find("not trusted"), std::string::npos) << report["normals"];
+  EXPECT_NE(report["normals"].get<std::string>().find("not trusted"), std::string::npos)
+      << report["normals"];
 }
 
 TEST(MetrologyCli, LeastSquaresAndMinimumZoneReports) {
   const std::string dir = testsupport::ScratchDir("cmm_estimators");
   WriteText(dir + "/ball.xyz", TenPointSphere(false));
   for (const std::string e : {"least-squares", "minimum-zone"}) {
-    const auto r = RunCommand(kCli + " fit " + dir + "/ball.xyz --model sphere --estimator " + e + " --out " + dir +
-                              "/fit.json --report " + dir + "/report.json");
+    const auto r = RunCommand(kCli + " fit " + dir + "/ball.xyz --model sphere --estimator " + e +
+                              " --out " + dir + "/fit.json --report " + dir + "/report.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("estimator " + e), std::string::npos) << r.out;
     const json report = ReadJson(dir + "/report.json");
@@ -75,13 +77,15 @@ TEST(MetrologyCli, DegenerateSetsExitOneWithTheReason) {
   const std::string dir = testsupport::ScratchDir("cmm_degenerate");
   std::ostringstream line, flat;
   for (int i = 0; i < 8; ++i) line << 1 + i << " " << 2 + 2 * i << " " << -i << "\n";
-  for (int i = 0; i < 12; ++i) flat << std::cos(i) * (1 + 0.1 * i) << " " << std::sin(i) * (1 + 0.1 * i) << " 3\n";
+  for (int i = 0; i < 12; ++i)
+    flat << std::cos(i) * (1 + 0.1 * i) << " " << std::sin(i) * (1 + 0.1 * i) << " 3\n";
   WriteText(dir + "/line.xyz", line.str());
   WriteText(dir + "/flat.xyz", flat.str());
   auto r = RunCommand(kCli + " fit " + dir + "/line.xyz --model plane --out " + dir + "/p.json");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("collinear"), std::string::npos) << r.err;
-  r = RunCommand(kCli + " fit " + dir + "/flat.xyz --model sphere --estimator least-squares --out " + dir + "/s.json");
+  r = RunCommand(kCli + " fit " + dir +
+                 "/flat.xyz --model sphere --estimator least-squares --out " + dir + "/s.json");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("coplanar"), std::string::npos) << r.err;
   WriteText(dir + "/four.xyz", "1 0 0\n0 1 0\n0 0 1\n-1 0 0\n");
@@ -89,7 +93,8 @@ TEST(MetrologyCli, DegenerateSetsExitOneWithTheReason) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("at least 5 points"), std::string::npos) << r.err;
   EXPECT_FALSE(testsupport::FileExists(dir + "/s.json"));
-  r = RunCommand(kCli + " fit " + dir + "/four.xyz --model sphere --estimator chebyshev --out " + dir + "/s.json");
+  r = RunCommand(kCli + " fit " + dir + "/four.xyz --model sphere --estimator chebyshev --out " +
+                 dir + "/s.json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--estimator"), std::string::npos) << r.err;
 }
@@ -97,8 +102,9 @@ TEST(MetrologyCli, DegenerateSetsExitOneWithTheReason) {
 TEST(MetrologyCli, BatchPassesTheEstimatorThrough) {
   const std::string dir = testsupport::ScratchDir("cmm_batch");
   WriteText(dir + "/ball.xyz", TenPointSphere(false));
-  const auto r = RunCommand(kCli + " batch " + dir + "/ball.xyz --model sphere --estimator minimum-zone --jobs 1 --out-dir " +
-                            dir + "/out");
+  const auto r = RunCommand(
+      kCli + " batch " + dir +
+      "/ball.xyz --model sphere --estimator minimum-zone --jobs 1 --out-dir " + dir + "/out");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const json report = ReadJson(dir + "/out/ball.report.json");
   EXPECT_EQ(report["estimator"], "minimum-zone");

@@ -91,9 +91,8 @@ TEST(ModelInput, ExactlyTheLimitIsReadAndEvaluatesToTheClosedForm) {
 // nlohmann's parser, not a parse_error; it must still be refused as invalid JSON naming the file.
 TEST(ModelInput, ANumberBeyondTheDoubleRangeIsInvalidJsonNamingTheFile) {
   const std::string dir = testsupport::ScratchDir("model_overflow");
-  WriteText(dir + "/big.json",
-            R"({"format": "implicitfit-model", "version": 1, "root": )"
-            R"({"type": "sphere", "center": [0, 0, 1e3081], "radius": 1}})");
+  WriteText(dir + "/big.json", R"({"format": "implicitfit-model", "version": 1, "root": )"
+                               R"({"type": "sphere", "center": [0, 0, 1e3081], "radius": 1}})");
   WriteText(dir + "/points.xyz", "0 0 0\n");
   const auto r = RunCommand(kCli + " eval " + dir + "/big.json " + dir + "/points.xyz");
   EXPECT_EQ(r.exit_code, 2);

@@ -22,8 +22,8 @@ const std::string kCli = IMPLICITFIT_CLI;
 std::string Plane(int axis, int sign, double offset) {
   double n[3] = {0, 0, 0};
   n[axis] = sign;
-  return R"({"type": "plane", "normal": [)" + std::to_string(n[0]) + "," + std::to_string(n[1]) + "," +
-         std::to_string(n[2]) + R"(], "offset": )" + std::to_string(offset) + "}";
+  return R"({"type": "plane", "normal": [)" + std::to_string(n[0]) + "," + std::to_string(n[1]) +
+         "," + std::to_string(n[2]) + R"(], "offset": )" + std::to_string(offset) + "}";
 }
 
 void WriteRoundedBox(const std::string& dir, int points) {
@@ -33,23 +33,31 @@ void WriteRoundedBox(const std::string& dir, int points) {
   for (int a = 0; a < 3; ++a)
     for (int s : {-1, 1}) {
       faces += (k ? "," : "") + Plane(a, s, half[a]);
-      scene += std::string(k ? "," : "") + R"({"name": "p)" + std::to_string(k) + R"(", "model": )" + Plane(a, s, half[a]) +
+      scene += std::string(k ? "," : "") + R"({"name": "p)" + std::to_string(k) +
+               R"(", "model": )" + Plane(a, s, half[a]) +
                R"(, "points": 100, "rms_distance": 0.004, "normal_side": "outward"})";
       ++k;
     }
-  WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection",
-    "delta": 0.2, "epsilon": 0.12, "order": 3, "children": [)" + faces + "]}}");
-  WriteText(dir + "/scene.json", R"({"format": "implicitfit-scene", "version": 1, "cloud": "cloud.xyz", "points": )" +
-                                     std::to_string(points) + R"(, "unassigned": 0, "primitives": [)" + scene + "]}");
+  WriteText(dir + "/truth.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection",
+    "delta": 0.2, "epsilon": 0.12, "order": 3, "children": [)" +
+                faces + "]}}");
+  WriteText(dir + "/scene.json",
+            R"({"format": "implicitfit-scene", "version": 1, "cloud": "cloud.xyz", "points": )" +
+                std::to_string(points) + R"(, "unassigned": 0, "primitives": [)" + scene + "]}");
 }
 
 TEST(ReconstructCommand, RoundedBoxGivesModelMeshAndReportWithTheFillet) {
   const std::string dir = ScratchDir("reconstruct");
   WriteRoundedBox(dir, 4000);
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 4000 --noise 0.004 --outliers 0.05 --seed 3 --out " +
-                       dir + "/cloud.xyz").exit_code, 0);
-  const auto r = RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir +
-                            "/model.json --mesh " + dir + "/mesh.ply --report " + dir + "/report.json");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir +
+                       "/truth.json --count 4000 --noise 0.004 --outliers 0.05 --seed 3 --out " +
+                       dir + "/cloud.xyz")
+                .exit_code,
+            0);
+  const auto r =
+      RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --scene " + dir + "/scene.json --out " +
+                 dir + "/model.json --mesh " + dir + "/mesh.ply --report " + dir + "/report.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = json::parse(Slurp(dir + "/report.json"));
   EXPECT_TRUE(report["success"].get<bool>());
@@ -80,11 +88,16 @@ TEST(ReconstructCommand, WithoutASceneItDetectsThePrimitivesItself) {
                 std::to_string(n[0]) + "," + std::to_string(n[1]) + "," + std::to_string(n[2]) +
                 R"(], "offset": )" + std::to_string(half[a]) + "}";
     }
-  WriteText(dir + "/box.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection", "delta": 0.1, "epsilon": 0.05, "order": 0, "children": [)" + planes + "]}}");
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/box.json --count 6000 --noise 0.002 --seed 5 --out " + dir +
-                       "/cloud.xyz").exit_code, 0);
-  const auto r = RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --out " + dir + "/model.json --report " + dir +
-                            "/report.json");
+  WriteText(
+      dir + "/box.json",
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection", "delta": 0.1, "epsilon": 0.05, "order": 0, "children": [)" +
+          planes + "]}}");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir +
+                       "/box.json --count 6000 --noise 0.002 --seed 5 --out " + dir + "/cloud.xyz")
+                .exit_code,
+            0);
+  const auto r = RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --out " + dir +
+                            "/model.json --report " + dir + "/report.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = json::parse(Slurp(dir + "/report.json"));
   EXPECT_TRUE(report["bounded"].get<bool>());
@@ -96,15 +109,21 @@ TEST(ReconstructCommand, WithoutASceneItDetectsThePrimitivesItself) {
 TEST(ReconstructCommand, UsageErrorsExitTwoWithoutOutput) {
   const std::string dir = ScratchDir("reconstruct_bad");
   WriteRoundedBox(dir, 500);
-  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 400 --seed 1 --out " + dir + "/cloud.xyz").exit_code, 0);
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir + "/truth.json --count 400 --seed 1 --out " + dir +
+                       "/cloud.xyz")
+                .exit_code,
+            0);
   WriteText(dir + "/bad_scene.json", R"({"format": "implicitfit-scene", "version": 1})");
   struct Case {
     std::string args, message;
   } cases[] = {
       {dir + "/missing.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "missing.xyz"},
-      {dir + "/cloud.xyz --scene " + dir + "/bad_scene.json --out " + dir + "/m.json", "bad_scene.json"},
+      {dir + "/cloud.xyz --scene " + dir + "/bad_scene.json --out " + dir + "/m.json",
+       "bad_scene.json"},
       {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "500 points"},
-      {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json --mesh " + dir + "/m.obj", "m.obj"},
+      {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json --mesh " + dir +
+           "/m.obj",
+       "m.obj"},
   };
   for (const Case& c : cases) {
     const auto r = RunCommand(kCli + " reconstruct " + c.args);

@@ -20,10 +20,13 @@ const std::string kCli = IMPLICITFIT_CLI;
 
 json ReadJson(const std::string& path) { return json::parse(testsupport::Slurp(path)); }
 
-std::string SampleAndFit(const std::string& name, const std::string& root, const std::string& kind) {
+std::string SampleAndFit(const std::string& name, const std::string& root,
+                         const std::string& kind) {
   const std::string dir = testsupport::ScratchDir(name);
-  WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}");
-  const auto s = RunCommand(kCli + " sample " + dir + "/truth.json --count 4000 --noise 0.002 --outliers 0.15 --seed 5" +
+  WriteText(dir + "/truth.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}");
+  const auto s = RunCommand(kCli + " sample " + dir +
+                            "/truth.json --count 4000 --noise 0.002 --outliers 0.15 --seed 5" +
                             " --out " + dir + "/cloud.xyz");
   EXPECT_EQ(s.exit_code, 0) << s.err;
   const auto r = RunCommand(kCli + " fit " + dir + "/cloud.xyz --model " + kind + " --out " + dir +
@@ -34,7 +37,8 @@ std::string SampleAndFit(const std::string& name, const std::string& root, const
 
 TEST(ShapeFitCommand, BoxFromARobustStart) {
   const std::string dir = SampleAndFit("fit_box", R"({"type": "box", "center": [1, -0.5, 0.3],
-      "axes": [[0.8, 0.6, 0], [-0.6, 0.8, 0]], "half_sizes": [0.6, 0.4, 0.25]})", "box");
+      "axes": [[0.8, 0.6, 0], [-0.6, 0.8, 0]], "half_sizes": [0.6, 0.4, 0.25]})",
+                                       "box");
   const json m = ReadJson(dir + "/fit.json")["root"];
   ASSERT_EQ(m["type"], "box");
   const double c[3] = {1, -0.5, 0.3};
@@ -52,8 +56,10 @@ TEST(ShapeFitCommand, BoxFromARobustStart) {
 }
 
 TEST(ShapeFitCommand, ParaboloidFromItsOsculatingSphere) {
-  const std::string dir = SampleAndFit("fit_paraboloid", R"({"type": "paraboloid", "vertex": [0.2, 0.1, -0.1],
-      "axis": [0, 0.6, 0.8], "curvature": 0.8})", "paraboloid");
+  const std::string dir =
+      SampleAndFit("fit_paraboloid", R"({"type": "paraboloid", "vertex": [0.2, 0.1, -0.1],
+      "axis": [0, 0.6, 0.8], "curvature": 0.8})",
+                   "paraboloid");
   const json m = ReadJson(dir + "/fit.json")["root"];
   ASSERT_EQ(m["type"], "paraboloid");
   EXPECT_NEAR(m["curvature"].get<double>(), 0.8, 0.02);
@@ -63,7 +69,8 @@ TEST(ShapeFitCommand, ParaboloidFromItsOsculatingSphere) {
 
 TEST(ShapeFitCommand, CapsuleFromACylinder) {
   const std::string dir = SampleAndFit("fit_capsule", R"({"type": "skeleton_offset",
-      "skeleton": {"segments": [[[0, 0, -0.5], [0, 0, 0.7]]]}, "radius": 0.3})", "capsule");
+      "skeleton": {"segments": [[[0, 0, -0.5], [0, 0, 0.7]]]}, "radius": 0.3})",
+                                       "capsule");
   const json m = ReadJson(dir + "/fit.json")["root"];
   ASSERT_EQ(m["type"], "skeleton_offset");
   EXPECT_NEAR(m["radius"].get<double>(), 0.3, 2e-3);
@@ -75,15 +82,18 @@ TEST(ShapeFitCommand, CapsuleFromACylinder) {
 
 TEST(ShapeFitCommand, SampleWorksOnBlobsAndPolylineTubes) {
   const std::string dir = testsupport::ScratchDir("sample_new_kinds");
-  WriteText(dir + "/blobs.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "blobs",
+  WriteText(dir + "/blobs.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "blobs",
       "centers": [[0, 0, 0], [0.8, 0, 0]], "weights": [2, 2], "widths": [3, 3], "threshold": 1, "kernel": "gaussian"}})");
-  WriteText(dir + "/tube.json", R"({"format": "implicitfit-model", "version": 1, "root": {"type": "skeleton_offset",
+  WriteText(dir + "/tube.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "skeleton_offset",
       "skeleton": {"polyline": [[0, 0, 0], [1, 0, 0], [1, 1, 0]]}, "radius": 0.2}})");
   for (const std::string name : {"blobs", "tube"}) {
-    const auto s = RunCommand(kCli + " sample " + dir + "/" + name + ".json --count 500 --seed 1 --out " + dir + "/" +
-                              name + ".xyz");
+    const auto s = RunCommand(kCli + " sample " + dir + "/" + name +
+                              ".json --count 500 --seed 1 --out " + dir + "/" + name + ".xyz");
     ASSERT_EQ(s.exit_code, 0) << s.err;
-    const auto e = RunCommand(kCli + " eval " + dir + "/" + name + ".json " + dir + "/" + name + ".xyz");
+    const auto e =
+        RunCommand(kCli + " eval " + dir + "/" + name + ".json " + dir + "/" + name + ".xyz");
     ASSERT_EQ(e.exit_code, 0) << e.err;
     std::istringstream values(e.out);
     double v, worst = 0;

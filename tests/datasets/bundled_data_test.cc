@@ -19,9 +19,10 @@ TEST(BundledData, CountsAndNormalsAreAsDocumented) {
     bool normals;
   };
   off_t total = 0;
-  for (const Expected& e : {Expected{"cgal_sphere_single.xyz", 422, true}, Expected{"cgal_spheres_10.ply", 5969, true},
-                            Expected{"cgal_fin90_two_planes_crease.xyz", 757, true},
-                            Expected{"pcl_milk_carton_kinect.pcd", 13704, false}}) {
+  for (const Expected& e :
+       {Expected{"cgal_sphere_single.xyz", 422, true}, Expected{"cgal_spheres_10.ply", 5969, true},
+        Expected{"cgal_fin90_two_planes_crease.xyz", 757, true},
+        Expected{"pcl_milk_carton_kinect.pcd", 13704, false}}) {
     const PointCloud c = ReadCloudFile(kBundled + e.file);
     EXPECT_EQ(c.size(), e.points) << e.file;
     EXPECT_EQ(c.has_normals(), e.normals) << e.file;

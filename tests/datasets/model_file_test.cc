@@ -21,7 +21,8 @@ TEST(ModelFile, WriteThenReadGivesTheSameParameters) {
 
 TEST(ModelFile, MalformedJsonNamesTheFileAndLine) {
   const std::string dir = testsupport::ScratchDir("model_file_bad");
-  testsupport::WriteText(dir + "/bad.json", "{\n  \"format\": \"implicitfit-model\",\n  \"version\": ,\n}");
+  testsupport::WriteText(dir + "/bad.json",
+                         "{\n  \"format\": \"implicitfit-model\",\n  \"version\": ,\n}");
   try {
     ReadModelFile(dir + "/bad.json");
     FAIL();

@@ -44,7 +44,8 @@ void ExpectClosedSurface(const TriangleMesh& mesh, long euler) {
   EXPECT_GT(topo.faces, 100);
   EXPECT_EQ(topo.edges_not_in_two_triangles, 0);
   EXPECT_EQ(topo.edges_used_twice_in_one_direction, 0);
-  EXPECT_EQ(topo.euler(), euler) << "V " << topo.vertices << " E " << topo.edges << " F " << topo.faces;
+  EXPECT_EQ(topo.euler(), euler) << "V " << topo.vertices << " E " << topo.edges << " F "
+                                 << topo.faces;
 }
 
 TEST(ModelMesher, SphereVerticesOnTheSphereNormalsRadialClosedGenusZero) {
@@ -69,7 +70,9 @@ TEST(ModelMesher, SphereVerticesOnTheSphereNormalsRadialClosedGenusZero) {
   // the chordal error of cells of 0.05 on radius 0.8 (a few percent).
   double volume = 0;
   for (const Eigen::Vector3i& t : result.mesh.triangles)
-    volume += (result.mesh.vertices[t[0]] - c).dot((result.mesh.vertices[t[1]] - c).cross(result.mesh.vertices[t[2]] - c)) / 6;
+    volume += (result.mesh.vertices[t[0]] - c)
+                  .dot((result.mesh.vertices[t[1]] - c).cross(result.mesh.vertices[t[2]] - c)) /
+              6;
   EXPECT_NEAR(volume, 4.0 / 3.0 * M_PI * r * r * r, 0.02 * 4.0 / 3.0 * M_PI * r * r * r);
 }
 
@@ -105,7 +108,8 @@ TEST(ModelMesher, SharpBlendAndPatchSolidsAreWatertight) {
       for (int s : {-1, 1}) {
         std::vector<double> n(3, 0.0);
         n[a] = s;
-        faces.push_back(rounded.AddPrimitive(NodeType::kPlane, {n[0], n[1], n[2], a == 0 ? 1.0 : 0.6}));
+        faces.push_back(
+            rounded.AddPrimitive(NodeType::kPlane, {n[0], n[1], n[2], a == 0 ? 1.0 : 0.6}));
       }
     rounded.SetRoot(rounded.AddOperator(NodeType::kIntersection, faces, 0.2, 0.15, 3));
   }
@@ -114,7 +118,8 @@ TEST(ModelMesher, SharpBlendAndPatchSolidsAreWatertight) {
     // q(x) = |x|^2 - 1 written as a degree-2 Bernstein polynomial over a big tetrahedron:
     // interpolate it exactly through the 10 quadratic Lagrange nodes? Easier: its control points
     // from the blossom, b(e_i + e_j) = B(v_i, v_j) = v_i . v_j - 1.
-    const Tetrahedron tet{Vec(0, 0, 3), Vec(2.83, 0, -1), Vec(-1.41, 2.45, -1), Vec(-1.41, -2.45, -1)};
+    const Tetrahedron tet{Vec(0, 0, 3), Vec(2.83, 0, -1), Vec(-1.41, 2.45, -1),
+                          Vec(-1.41, -2.45, -1)};
     std::vector<double> b;
     for (int i = 0; i < 4; ++i)
       for (int j = i; j < 4; ++j) b.push_back(tet.vertex(i).dot(tet.vertex(j)) - 1.0);
@@ -146,7 +151,9 @@ TEST(ModelMesher, OpenSurfaceEndsAtTheBoxAndBadBoxesAreRefused) {
   ASSERT_FALSE(result.mesh.triangles.empty());
   double area = 0;
   for (const Eigen::Vector3i& t : result.mesh.triangles)
-    area += 0.5 * (result.mesh.vertices[t[1]] - result.mesh.vertices[t[0]]).cross(result.mesh.vertices[t[2]] - result.mesh.vertices[t[0]]).norm();
+    area += 0.5 * (result.mesh.vertices[t[1]] - result.mesh.vertices[t[0]])
+                      .cross(result.mesh.vertices[t[2]] - result.mesh.vertices[t[0]])
+                      .norm();
   EXPECT_NEAR(area, 4.0, 1e-9);
   for (const Vec& x : result.mesh.vertices) EXPECT_NEAR(x.z(), 0.25, 1e-12);
   options.box_max = Vec(1, -2, 1);

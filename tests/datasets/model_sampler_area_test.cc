@@ -57,7 +57,8 @@ TEST(SampleByArea, CappedCylinderCapsGetTheirArea) {
   o.box_min = Vec(-0.6, -0.6, -1.1);
   o.box_max = Vec(0.6, 0.6, 1.1);
   const SampledCloud c = SampleModel(m, o);
-  const double caps = ShareOf(c.cloud, [&](const Vec& x) { return std::abs(std::abs(x.z()) - half_height) < 1e-9; });
+  const double caps = ShareOf(
+      c.cloud, [&](const Vec& x) { return std::abs(std::abs(x.z()) - half_height) < 1e-9; });
   ExpectShare(caps, 2 * r * r / (2 * r * (r + 2 * half_height)), o.count);
   std::printf("  cap share %.4f (area share %.4f)\n", caps, r / (r + 2 * half_height));
 }
@@ -86,10 +87,11 @@ TEST(SampleByArea, BoxFacesGetTheirAreasAlsoInAPartialView) {
     const SampledCloud c = SampleModel(m, o);
     const double total = partial ? area.sum() : 2 * area.sum();
     for (int a = 0; a < 3; ++a) {
-      const double share = ShareOf(c.cloud, [&](const Vec& x) { return std::abs(std::abs(x[a]) - half[a]) < 1e-9; });
+      const double share =
+          ShareOf(c.cloud, [&](const Vec& x) { return std::abs(std::abs(x[a]) - half[a]) < 1e-9; });
       ExpectShare(share, (partial ? 1 : 2) * area[a] / total, o.count);
-      std::printf("  %s axis %d share %.4f (area share %.4f)\n", partial ? "partial" : "whole", a, share,
-                  (partial ? 1 : 2) * area[a] / total);
+      std::printf("  %s axis %d share %.4f (area share %.4f)\n", partial ? "partial" : "whole", a,
+                  share, (partial ? 1 : 2) * area[a] / total);
     }
   }
 }

@@ -35,8 +35,8 @@ void RandomiseSigns(PointCloud* c, unsigned seed) {
 }
 
 // Fraction of normals within `degrees` of the truth, sign included.
-double Agreeing(const std::vector<Eigen::Vector3d>& normals, const std::vector<Eigen::Vector3d>& truth,
-                double degrees) {
+double Agreeing(const std::vector<Eigen::Vector3d>& normals,
+                const std::vector<Eigen::Vector3d>& truth, double degrees) {
   const double c = std::cos(degrees * M_PI / 180.0);
   size_t ok = 0;
   for (size_t i = 0; i < truth.size(); ++i) ok += normals[i].dot(truth[i]) >= c;
@@ -47,7 +47,8 @@ TEST(Neighbourhoods, AreTheNearestPointsByBruteForce) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Eigen::Vector3d> points(400);
-  for (auto& p : points) p = Eigen::Vector3d(u(rng), u(rng), 0.05 * u(rng)) + Eigen::Vector3d(5e5, 4e6, 100);
+  for (auto& p : points)
+    p = Eigen::Vector3d(u(rng), u(rng), 0.05 * u(rng)) + Eigen::Vector3d(5e5, 4e6, 100);
   const Neighbourhoods nb = FindNeighbourhoods(points);
   for (size_t i = 0; i < points.size(); ++i) {
     std::vector<std::pair<double, int>> all;
@@ -108,7 +109,8 @@ TEST(NormalEstimation, NoisyFarAwaySphereStillOrientsOutward) {
   std::mt19937 rng(5);
   std::normal_distribution<double> g(0.0, 0.015);
   PointCloud cloud;
-  for (const Eigen::Vector3d& p : truth.points) cloud.points.push_back(p + Eigen::Vector3d(g(rng), g(rng), g(rng)));
+  for (const Eigen::Vector3d& p : truth.points)
+    cloud.points.push_back(p + Eigen::Vector3d(g(rng), g(rng), g(rng)));
   EnsureOrientedNormals(&cloud);
   EXPECT_GT(Agreeing(cloud.normals, truth.normals, 90.0), 0.99);  // sign
   EXPECT_GT(Agreeing(cloud.normals, truth.normals, 15.0), 0.95);  // direction
@@ -130,7 +132,8 @@ TEST(NormalEstimation, ViewpointOrientsEveryNormalTowardTheSensor) {
     // Truth: the upward normal of z = h(x, y) is (-h_x, -h_y, 1).
     const double x = cloud.points[i].x(), y = cloud.points[i].y();
     const Eigen::Vector3d up = Eigen::Vector3d(-0.3 * std::cos(3 * x) * std::cos(2 * y),
-                                               0.2 * std::sin(3 * x) * std::sin(2 * y), 1).normalized();
+                                               0.2 * std::sin(3 * x) * std::sin(2 * y), 1)
+                                   .normalized();
     EXPECT_GT(cloud.normals[i].dot(up), std::cos(10 * M_PI / 180)) << i;
   }
 }
@@ -150,7 +153,8 @@ TEST(NormalEstimation, InvalidFileNormalsAreReestimatedFromNeighbours) {
   std::string text;
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j)
-      text += std::to_string(i) + " " + std::to_string(j) + " 0 " + (i == 4 && j == 5 ? "0 0 0" : "0 0 -1") + "\n";
+      text += std::to_string(i) + " " + std::to_string(j) + " 0 " +
+              (i == 4 && j == 5 ? "0 0 0" : "0 0 -1") + "\n";
   testsupport::WriteText(dir + "/plane.xyz", text);
   CloudFileInfo info;
   const PointCloud cloud = ReadCloudFile(dir + "/plane.xyz", &info);

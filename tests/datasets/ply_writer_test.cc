@@ -36,7 +36,8 @@ TEST(PlyWriter, BinaryIsLittleEndianDoubleWithNormalsAndResidual) {
   const std::string bytes = testsupport::Slurp(dir + "/out.ply");
   const std::string header =
       "ply\nformat binary_little_endian 1.0\ncomment written by implicitfit\nelement vertex 30\n"
-      "property double x\nproperty double y\nproperty double z\nproperty double nx\nproperty double ny\n"
+      "property double x\nproperty double y\nproperty double z\nproperty double nx\nproperty "
+      "double ny\n"
       "property double nz\nproperty double residual\nend_header\n";
   ASSERT_EQ(bytes.substr(0, header.size()), header);
   ASSERT_EQ(bytes.size(), header.size() + 30 * 7 * 8);
@@ -51,7 +52,8 @@ TEST(PlyWriter, BinaryIsLittleEndianDoubleWithNormalsAndResidual) {
   const PointCloud back = ReadCloudFile(dir + "/out.ply", &info);
   EXPECT_EQ(back.points, cloud.points);  // exact: double in, double out
   ASSERT_TRUE(back.has_normals());
-  for (size_t i = 0; i < cloud.size(); ++i) EXPECT_LT((back.normals[i] - cloud.normals[i]).norm(), 1e-15);
+  for (size_t i = 0; i < cloud.size(); ++i)
+    EXPECT_LT((back.normals[i] - cloud.normals[i]).norm(), 1e-15);
   EXPECT_EQ(info.ignored_properties, std::vector<std::string>{"residual"});
   EXPECT_FALSE(testsupport::FileExists(dir + "/out.ply.tmp." + std::to_string(::getpid())));
 }
@@ -68,7 +70,8 @@ TEST(PlyWriter, AsciiAndFloatRoundTrip) {
   const PointCloud f = ReadCloudFile(dir + "/f.ply");
   ASSERT_EQ(f.size(), cloud.size());
   for (size_t i = 0; i < f.size(); ++i)
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(f.points[i][k], static_cast<double>(static_cast<float>(cloud.points[i][k])));
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(f.points[i][k], static_cast<double>(static_cast<float>(cloud.points[i][k])));
 }
 
 TEST(PlyWriter, LabelsAreAnIntPropertyBeforeTheResidual) {
@@ -111,7 +114,8 @@ TEST(PlyWriter, FailuresLeaveNoFile) {
     WritePlyFile(cloud, dir + "/no/such/dir/x.ply");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(dir + "/no/such/dir/x.ply: cannot write", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(dir + "/no/such/dir/x.ply: cannot write", 0), 0u)
+        << e.what();
   }
 }
 

@@ -25,9 +25,9 @@ bool HaveSharedData() {
   return ::stat(kData.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
 }
 
-#define REQUIRE_SHARED_DATA()                 \
-  do {                                        \
-      if (!HaveSharedData()) GTEST_SKIP() << kData << " is absent"; \
+#define REQUIRE_SHARED_DATA()                                     \
+  do {                                                            \
+    if (!HaveSharedData()) GTEST_SKIP() << kData << " is absent"; \
   } while (0)
 
 struct RealFile {
@@ -118,17 +118,19 @@ TEST_P(Fit4CadFiles, LabelledCopyHasTheCountAndThePrimitiveLabels) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedData, Fit4CadFiles,
-                         ::testing::Values(Fit4Cad{"test_PC33", 1500}, Fit4Cad{"test_PC34", 12089},
-                                           Fit4Cad{"test_PC35", 24068}, Fit4Cad{"test_PC21", 1000},
-                                           Fit4Cad{"train_PC124", 17945}, Fit4Cad{"train_PC131", 15930},
-                                           Fit4Cad{"train_PC145", 1500}, Fit4Cad{"train_PC155", 20185}),
-                         [](const ::testing::TestParamInfo<Fit4Cad>& p) { return std::string(p.param.name); });
+INSTANTIATE_TEST_SUITE_P(
+    SharedData, Fit4CadFiles,
+    ::testing::Values(Fit4Cad{"test_PC33", 1500}, Fit4Cad{"test_PC34", 12089},
+                      Fit4Cad{"test_PC35", 24068}, Fit4Cad{"test_PC21", 1000},
+                      Fit4Cad{"train_PC124", 17945}, Fit4Cad{"train_PC131", 15930},
+                      Fit4Cad{"train_PC145", 1500}, Fit4Cad{"train_PC155", 20185}),
+    [](const ::testing::TestParamInfo<Fit4Cad>& p) { return std::string(p.param.name); });
 
 TEST(RealFiles, OrganizedStereoScanDropsItsNanCellsAndKeepsTheViewpoint) {
   REQUIRE_SHARED_DATA();
   CloudFileInfo info;
-  const PointCloud cloud = ReadCloudFile(kData + "/pcl/pcl_table_scene_mug_stereo_textured.pcd", &info);
+  const PointCloud cloud =
+      ReadCloudFile(kData + "/pcl/pcl_table_scene_mug_stereo_textured.pcd", &info);
   EXPECT_EQ(info.format, "pcd binary_compressed");
   EXPECT_EQ(info.records, 640u * 480u);
   EXPECT_EQ(info.dropped_missing, 640u * 480u - 209280u);
@@ -142,7 +144,8 @@ TEST(RealFiles, OrganizedStereoScanDropsItsNanCellsAndKeepsTheViewpoint) {
 TEST(RealFiles, StanfordRangeGridGivesItsVerticesOnly) {
   REQUIRE_SHARED_DATA();
   CloudFileInfo info;
-  const PointCloud cloud = ReadCloudFile(kData + "/stanford/stanford_bunny_bun000_rangescan.ply", &info);
+  const PointCloud cloud =
+      ReadCloudFile(kData + "/stanford/stanford_bunny_bun000_rangescan.ply", &info);
   EXPECT_EQ(cloud.size(), 40256u);
   EXPECT_EQ(info.grid_width, 512u);
   EXPECT_EQ(info.grid_height, 400u);
@@ -171,7 +174,8 @@ TEST(RealFiles, InvalidNormalsAreListedByTheFormatReaders) {
   const std::string xyz_path = kData + "/pcl/pcl_sac_plane_test.xyz";
   std::ifstream in(xyz_path);
   size_t nan_lines = 0;
-  for (std::string line; std::getline(in, line);) nan_lines += line.find("nan") != std::string::npos;
+  for (std::string line; std::getline(in, line);)
+    nan_lines += line.find("nan") != std::string::npos;
   ASSERT_GT(nan_lines, 0u);
   CloudFileInfo xyz_info, pcd_info;
   ReadXyzFile(xyz_path, &xyz_info);
@@ -183,7 +187,8 @@ TEST(RealFiles, InvalidNormalsAreListedByTheFormatReaders) {
 TEST(RealFiles, PlyReadsExtraPropertiesAsIgnoredAndNormalsAsUnit) {
   REQUIRE_SHARED_DATA();
   CloudFileInfo info;
-  const PointCloud cloud = ReadCloudFile(kData + "/cgal/cgal_ball_icosahedron_20planes_labeled.ply", &info);
+  const PointCloud cloud =
+      ReadCloudFile(kData + "/cgal/cgal_ball_icosahedron_20planes_labeled.ply", &info);
   EXPECT_EQ(info.format, "ply ascii");
   EXPECT_TRUE(info.normals_in_file);
   EXPECT_EQ(info.ignored_properties, std::vector<std::string>{"segment_index"});

@@ -22,7 +22,8 @@ void RandomiseSigns(PointCloud* c, unsigned seed) {
     if (rng() & 1) n = -n;
 }
 
-double AgreeingSigns(const std::vector<Eigen::Vector3d>& normals, const std::vector<Eigen::Vector3d>& truth) {
+double AgreeingSigns(const std::vector<Eigen::Vector3d>& normals,
+                     const std::vector<Eigen::Vector3d>& truth) {
   size_t ok = 0;
   for (size_t i = 0; i < truth.size(); ++i) ok += normals[i].dot(truth[i]) > 0;
   return static_cast<double>(ok) / static_cast<double>(truth.size());
@@ -43,21 +44,25 @@ TEST_P(RealScanViewpoint, EstimatedNormalsFaceTheScannerAndAgreeLocally) {
   const auto start = std::chrono::steady_clock::now();
   CloudFileInfo info;
   PointCloud cloud = ReadCloudFile(path, &info);
-  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double read_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_TRUE(info.viewpoint.has_value());
   NormalOptions options;
   options.viewpoint = info.viewpoint;
   const NormalResult r = EnsureOrientedNormals(&cloud, options);
-  const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.action, "estimated, oriented toward viewpoint");
   size_t facing = 0;
-  for (size_t i = 0; i < cloud.size(); ++i) facing += cloud.normals[i].dot(*info.viewpoint - cloud.points[i]) >= 0;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    facing += cloud.normals[i].dot(*info.viewpoint - cloud.points[i]) >= 0;
   EXPECT_EQ(facing, cloud.size());
   // Independent of how they were oriented: neighbouring normals rarely oppose each other.
-  const double opposed = OpposedNeighbourFraction(cloud.normals, FindNeighbourhoods(cloud.points).indices);
+  const double opposed =
+      OpposedNeighbourFraction(cloud.normals, FindNeighbourhoods(cloud.points).indices);
   EXPECT_LT(opposed, 0.05);
-  std::printf("%s: %zu points, read %.2f s, with normals %.2f s, mean k %.1f, opposed pairs %.4f\n", GetParam(),
-              cloud.size(), read_seconds, total_seconds, r.mean_neighbours, opposed);
+  std::printf("%s: %zu points, read %.2f s, with normals %.2f s, mean k %.1f, opposed pairs %.4f\n",
+              GetParam(), cloud.size(), read_seconds, total_seconds, r.mean_neighbours, opposed);
 }
 
 class RealOrientedScan : public ::testing::TestWithParam<const char*> {};
@@ -72,7 +77,8 @@ TEST_P(RealOrientedScan, RandomSignsAreReorientedLikeTheFile) {
   EXPECT_EQ(r.action, "read from file, MST-re-oriented");
   const double agree = AgreeingSigns(cloud.normals, truth.normals);
   EXPECT_GT(agree, 0.99);
-  std::printf("%s: %.2f%% of random-sign normals re-oriented as in the file\n", GetParam(), 100 * agree);
+  std::printf("%s: %.2f%% of random-sign normals re-oriented as in the file\n", GetParam(),
+              100 * agree);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, RealOrientedScan,

@@ -43,7 +43,8 @@ TEST(XyzReader, RefusesHostileTextWithTheLineNumber) {
 
 TEST(XyzReader, ListsUnusableNormalsInsteadOfRefusingThem) {
   CloudFileInfo info;
-  const PointCloud c = ParseXyzText("1 2 3 0 0 1\n1 2 4 0 0 0\n1 2 5 nan nan nan\n1 2 6 0 inf 0\n", "d.xyz", &info);
+  const PointCloud c =
+      ParseXyzText("1 2 3 0 0 1\n1 2 4 0 0 0\n1 2 5 nan nan nan\n1 2 6 0 inf 0\n", "d.xyz", &info);
   ASSERT_EQ(c.size(), 4u);
   EXPECT_EQ(info.invalid_normals, (std::vector<size_t>{1, 2, 3}));
   EXPECT_EQ(c.normals[0], Eigen::Vector3d(0, 0, 1));

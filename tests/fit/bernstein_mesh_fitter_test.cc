@@ -67,15 +67,14 @@ TEST(BernsteinMeshFitter, ConvexEllipsoidIsCertifiedOnTheBox) {
   EXPECT_TRUE(r.certified_convex);
   EXPECT_LE(r.rms, 1.5 * sigma);
   const Model m = r.ToModel();
-  const MeshConvexityCertificate cert =
-      CertifyMeshConvexity(3, r.grid, m.parameters().data());
+  const MeshConvexityCertificate cert = CertifyMeshConvexity(3, r.grid, m.parameters().data());
   EXPECT_TRUE(cert.convex_on_box);
   EXPECT_LE(cert.c1_defect, 1e-9);
   const SampledCloud clean = Sample(truth, 2000, 0.0, 4);
   const double truth_rms = RmsDistanceToZeroSet(m, clean.cloud.points);
   EXPECT_LE(truth_rms, sigma);
-  std::printf("ellipsoid: rms %.3g (sigma %.3g), truth distance rms %.3g, %d iterations, %.2f s\n", r.rms,
-              sigma, truth_rms, r.iterations, r.seconds);
+  std::printf("ellipsoid: rms %.3g (sigma %.3g), truth distance rms %.3g, %d iterations, %.2f s\n",
+              r.rms, sigma, truth_rms, r.iterations, r.seconds);
 }
 
 // Degree 4: at 4x4x4 cubes (edge 0.725 for a tube of radius 0.35) C1 cubics stop at RMS
@@ -99,8 +98,8 @@ TEST(BernsteinMeshFitter, TorusUnconstrained) {
   const SampledCloud clean = Sample(truth, 2000, 0.0, 6);
   const double truth_rms = RmsDistanceToZeroSet(m, clean.cloud.points);
   EXPECT_LE(truth_rms, 2 * sigma);
-  std::printf("torus: rms %.3g (sigma %.3g), truth distance rms %.3g, %d iterations, %.2f s\n", r.rms, sigma,
-              truth_rms, r.iterations, r.seconds);
+  std::printf("torus: rms %.3g (sigma %.3g), truth distance rms %.3g, %d iterations, %.2f s\n",
+              r.rms, sigma, truth_rms, r.iterations, r.seconds);
 }
 
 }  // namespace

@@ -37,8 +37,9 @@ TEST(BlobsRecovery, ThreeGaussianBlobsFromAPerturbedStart) {
   const std::vector<double>& p = r.model.parameters();
   double worst = 0;
   for (int i = 0; i < 9; ++i) worst = std::max(worst, std::abs(p[i] - centres[i]));
-  std::printf("  3 blobs: worst centre error %.3g (spacing 1.2), weights %.6f %.6f %.6f, threshold %.3f\n", worst,
-              p[9], p[10], p[11], p[15]);
+  std::printf(
+      "  3 blobs: worst centre error %.3g (spacing 1.2), weights %.6f %.6f %.6f, threshold %.3f\n",
+      worst, p[9], p[10], p[11], p[15]);
   EXPECT_LT(worst, 1e-6 * 1.2);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(p[9 + i], weights[i], 1e-5 * weights[i]);
@@ -63,8 +64,9 @@ TEST(SkeletonOffsetRecovery, CapsuleEndPointsAndRadiusWithinTwoAndAHalfCramerRao
   so.outlier_fraction = 0.2;
   so.seed = 14;
   const SampledCloud s = SampleModel(capsule(a, b, radius), so);
-  const TreeFitResult r = FitModelTree(capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
-                                       s.cloud.points, s.cloud.normals, TreeFitOptions{});
+  const TreeFitResult r =
+      FitModelTree(capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
+                   s.cloud.points, s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
   const Vec a_hat(p[0], p[1], p[2]), b_hat(p[3], p[4], p[5]);
@@ -75,9 +77,11 @@ TEST(SkeletonOffsetRecovery, CapsuleEndPointsAndRadiusWithinTwoAndAHalfCramerRao
     return capsule(a + d.segment<3>(0), b + d.segment<3>(3), radius + d[6]).Value(x);
   };
   const Eigen::MatrixXd cov = testsupport::CramerRaoCovariance(residual, 7, inliers, so.noise);
-  const double sa = testsupport::Spread(cov, 0, 3), sb = testsupport::Spread(cov, 3, 3), sr = std::sqrt(cov(6, 6));
-  std::printf("  capsule: end errors %.3g, %.3g (CR spreads %.3g, %.3g), radius %.3g (%.3g), rms %.4g\n",
-              (a_hat - a).norm(), (b_hat - b).norm(), sa, sb, std::abs(p[6] - radius), sr, r.rms);
+  const double sa = testsupport::Spread(cov, 0, 3), sb = testsupport::Spread(cov, 3, 3),
+               sr = std::sqrt(cov(6, 6));
+  std::printf(
+      "  capsule: end errors %.3g, %.3g (CR spreads %.3g, %.3g), radius %.3g (%.3g), rms %.4g\n",
+      (a_hat - a).norm(), (b_hat - b).norm(), sa, sb, std::abs(p[6] - radius), sr, r.rms);
   EXPECT_LT((a_hat - a).norm(), 2.5 * sa);
   EXPECT_LT((b_hat - b).norm(), 2.5 * sb);
   EXPECT_LT(std::abs(p[6] - radius), 2.5 * sr);

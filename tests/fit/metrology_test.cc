@@ -30,14 +30,19 @@ using testsupport::ParameterDifferences;
 
 NodeType KindOf(CmmKind k) {
   switch (k) {
-    case CmmKind::kPlane: return NodeType::kPlane;
-    case CmmKind::kSphere: return NodeType::kSphere;
-    case CmmKind::kCylinder: return NodeType::kCylinder;
-    default: return NodeType::kCone;
+    case CmmKind::kPlane:
+      return NodeType::kPlane;
+    case CmmKind::kSphere:
+      return NodeType::kSphere;
+    case CmmKind::kCylinder:
+      return NodeType::kCylinder;
+    default:
+      return NodeType::kCone;
   }
 }
 
-PrimitiveFitResult FitSet(const CmmSet& s, Estimator e, const std::vector<Eigen::Vector3d>* points = nullptr) {
+PrimitiveFitResult FitSet(const CmmSet& s, Estimator e,
+                          const std::vector<Eigen::Vector3d>* points = nullptr) {
   PrimitiveFitOptions o;
   o.kind = KindOf(s.kind);
   o.estimator = e;
@@ -85,7 +90,8 @@ TEST_P(LeastSquaresReference, AgreesWithLongDoubleOrthogonalDistanceReference) {
       // The residual figures: every point, max - min of the signed distances.
       double lo = INFINITY, hi = -INFINITY, ss = 0;
       for (const auto& x : s.points) {
-        const double d = PrimitiveSignedDistance(KindOf(kind), r.parameters.data(), x.data(), nullptr);
+        const double d =
+            PrimitiveSignedDistance(KindOf(kind), r.parameters.data(), x.data(), nullptr);
         lo = std::min(lo, d);
         hi = std::max(hi, d);
         ss += d * d;
@@ -94,9 +100,10 @@ TEST_P(LeastSquaresReference, AgreesWithLongDoubleOrthogonalDistanceReference) {
       EXPECT_NEAR(r.form.rms, std::sqrt(ss / n), 1e-15 * CmmSet::kSize);
     }
   }
-  std::printf("%s: largest difference to the reference %.3g mm (%.3g of the part size); %d of 20 sets "
-              "found a lower sum of squares than the reference's minimum\n",
-              NodeTypeName(KindOf(kind)), worst, worst / CmmSet::kSize, better_minima);
+  std::printf(
+      "%s: largest difference to the reference %.3g mm (%.3g of the part size); %d of 20 sets "
+      "found a lower sum of squares than the reference's minimum\n",
+      NodeTypeName(KindOf(kind)), worst, worst / CmmSet::kSize, better_minima);
 }
 
 TEST_P(LeastSquaresReference, DoesNotDependOnThePointOrder) {
@@ -108,9 +115,11 @@ TEST_P(LeastSquaresReference, DoesNotDependOnThePointOrder) {
     std::mt19937 rng(seed);
     std::shuffle(shuffled.begin(), shuffled.end(), rng);
     std::reverse(shuffled.begin() + 3, shuffled.end());
-    const PrimitiveFitResult a = FitSet(s, Estimator::kLeastSquares), b = FitSet(s, Estimator::kLeastSquares, &shuffled);
+    const PrimitiveFitResult a = FitSet(s, Estimator::kLeastSquares),
+                             b = FitSet(s, Estimator::kLeastSquares, &shuffled);
     ASSERT_TRUE(a.success && b.success) << a.message << " / " << b.message;
-    const auto da = ParameterDifferences(s, a.parameters, ref), db = ParameterDifferences(s, b.parameters, ref);
+    const auto da = ParameterDifferences(s, a.parameters, ref),
+               db = ParameterDifferences(s, b.parameters, ref);
     for (size_t i = 0; i < da.size(); ++i) {
       EXPECT_LE(da[i].second, 1e-9 * CmmSet::kSize);
       EXPECT_LE(db[i].second, 1e-9 * CmmSet::kSize) << db[i].first;
@@ -120,7 +129,8 @@ TEST_P(LeastSquaresReference, DoesNotDependOnThePointOrder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CmmKinds, LeastSquaresReference,
-                         ::testing::Values(CmmKind::kPlane, CmmKind::kSphere, CmmKind::kCylinder, CmmKind::kCone));
+                         ::testing::Values(CmmKind::kPlane, CmmKind::kSphere, CmmKind::kCylinder,
+                                           CmmKind::kCone));
 
 // Minimum width of a point set by enumeration: every 4 points define the candidate directions
 // of a 3 + 1 (facet-vertex) or 2 + 2 (edge-edge) contact; the width of all points across each.
@@ -203,7 +213,8 @@ TEST_P(MinimumZoneCurved, NarrowerThanLeastSquaresAndLocallyOptimal) {
       // parameters (radius, centre, axis, angle) by up to 1e-4 mm lowers it.
       auto half_width = [&](const std::vector<double>& p) {
         double t = 0;
-        for (const auto& x : s.points) t = std::max(t, std::abs(PrimitiveSignedDistance(nk, p.data(), x.data(), nullptr)));
+        for (const auto& x : s.points)
+          t = std::max(t, std::abs(PrimitiveSignedDistance(nk, p.data(), x.data(), nullptr)));
         return t;
       };
       const double t = half_width(mz.parameters);
@@ -218,7 +229,8 @@ TEST_P(MinimumZoneCurved, NarrowerThanLeastSquaresAndLocallyOptimal) {
       }
     }
   }
-  std::printf("%s minimum zone: %d of %d sets certified optimal\n", NodeTypeName(nk), certified, sets);
+  std::printf("%s minimum zone: %d of %d sets certified optimal\n", NodeTypeName(nk), certified,
+              sets);
 }
 
 INSTANTIATE_TEST_SUITE_P(CmmKinds, MinimumZoneCurved,
@@ -253,7 +265,8 @@ TEST(PointsOnly, EveryKindFromAFewProbedPoints) {
       ASSERT_TRUE(r.success) << NodeTypeName(KindOf(kind)) << " n=" << n << ": " << r.message;
       EXPECT_TRUE(r.points_only);
       const auto ref = CmmReference(s).Solve();
-      for (const auto& [name, diff] : ParameterDifferences(s, r.parameters, ref)) EXPECT_LE(diff, 0.01) << name;
+      for (const auto& [name, diff] : ParameterDifferences(s, r.parameters, ref))
+        EXPECT_LE(diff, 0.01) << name;
     }
   }
 }
@@ -262,7 +275,8 @@ TEST(PointsOnly, RefusesTooFewAndDegeneratePoints) {
   PrimitiveFitOptions o;
   std::vector<Eigen::Vector3d> line, disc;
   for (int i = 0; i < 8; ++i) line.push_back(Eigen::Vector3d(1 + i, 2 + 2 * i, -i));
-  for (int i = 0; i < 12; ++i) disc.push_back(Eigen::Vector3d(std::cos(i), std::sin(i), 0) * (1 + 0.1 * i));
+  for (int i = 0; i < 12; ++i)
+    disc.push_back(Eigen::Vector3d(std::cos(i), std::sin(i), 0) * (1 + 0.1 * i));
   o.kind = NodeType::kPlane;
   PrimitiveFitResult r = FitPrimitive(line, {}, o);
   EXPECT_FALSE(r.success);
@@ -292,14 +306,23 @@ TEST(PointsOnly, HypothesesFromExactlyKPointsPassThroughThem) {
     std::vector<double> h;
     bool ok = false;
     switch (nk) {
-      case NodeType::kPlane: ok = PlaneFromPoints(local.data(), &h); break;
-      case NodeType::kSphere: ok = SphereFromPoints(local.data(), &h); break;
-      case NodeType::kCylinder: ok = CylinderFromPoints(local.data(), &h); break;
-      default: ok = ConeFromPoints(local.data(), &h); break;
+      case NodeType::kPlane:
+        ok = PlaneFromPoints(local.data(), &h);
+        break;
+      case NodeType::kSphere:
+        ok = SphereFromPoints(local.data(), &h);
+        break;
+      case NodeType::kCylinder:
+        ok = CylinderFromPoints(local.data(), &h);
+        break;
+      default:
+        ok = ConeFromPoints(local.data(), &h);
+        break;
     }
     ASSERT_TRUE(ok) << NodeTypeName(nk);
     for (const auto& x : local)
-      EXPECT_NEAR(PrimitiveSignedDistance(nk, h.data(), x.data(), nullptr), 0.0, 1e-6) << NodeTypeName(nk);
+      EXPECT_NEAR(PrimitiveSignedDistance(nk, h.data(), x.data(), nullptr), 0.0, 1e-6)
+          << NodeTypeName(nk);
   }
 }
 

@@ -50,9 +50,9 @@ TEST(BoxRecovery, CentreRotationAndSizesWithinTwoAndAHalfCramerRaoSpreads) {
   const SampledCloud s = SampleModel(truth, so);
 
   Model init;
-  init.AddPrimitive(NodeType::kBox, BoxParameters(c + Vec(0.03, -0.02, 0.02),
-                                                   Perturbed(q, Vec(0.03, -0.04, 0.02)),
-                                                   h.cwiseProduct(Vec(1.05, 0.95, 1.04))));
+  init.AddPrimitive(NodeType::kBox,
+                    BoxParameters(c + Vec(0.03, -0.02, 0.02), Perturbed(q, Vec(0.03, -0.04, 0.02)),
+                                  h.cwiseProduct(Vec(1.05, 0.95, 1.04))));
   const TreeFitResult r = FitModelTree(init, s.cloud.points, s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
@@ -70,8 +70,10 @@ TEST(BoxRecovery, CentreRotationAndSizesWithinTwoAndAHalfCramerRaoSpreads) {
   const Eigen::MatrixXd cov = testsupport::CramerRaoCovariance(residual, 9, Inliers(s), so.noise);
   const double sc = testsupport::Spread(cov, 0, 3), sr = testsupport::Spread(cov, 3, 3),
                sh = testsupport::Spread(cov, 6, 3);
-  std::printf("  box: centre error %.3g (CR spread %.3g), rotation %.3g rad (%.3g), sizes %.3g (%.3g), rms %.4g\n",
-              (c_hat - c).norm(), sc, angle, sr, (h_hat - h).norm(), sh, r.rms);
+  std::printf(
+      "  box: centre error %.3g (CR spread %.3g), rotation %.3g rad (%.3g), sizes %.3g (%.3g), rms "
+      "%.4g\n",
+      (c_hat - c).norm(), sc, angle, sr, (h_hat - h).norm(), sh, r.rms);
   EXPECT_LT((c_hat - c).norm(), 2.5 * sc);
   EXPECT_LT(angle, 2.5 * sr);
   EXPECT_LT((h_hat - h).norm(), 2.5 * sh);
@@ -83,7 +85,8 @@ TEST(BoxRecovery, CentreRotationAndSizesWithinTwoAndAHalfCramerRaoSpreads) {
 // points with horizontal normals and the lowest point. The roof is no box face: its points are
 // outliers for the robust loss. Reports the inlier RMS.
 TEST(BoxRecovery, RealBoxOnGroundScanAsBoxPlusGroundPlane) {
-  const std::string path = std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_point_set_3_box_on_ground.xyz";
+  const std::string path =
+      std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_point_set_3_box_on_ground.xyz";
   if (!std::ifstream(path).good()) GTEST_SKIP() << "absent: " << path;
   const PointCloud cloud = ReadCloudFile(path);
   ASSERT_EQ(cloud.normals.size(), cloud.points.size());
@@ -106,10 +109,11 @@ TEST(BoxRecovery, RealBoxOnGroundScanAsBoxPlusGroundPlane) {
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
   const double size = (hi - lo).norm();
-  std::printf("  box on ground: %zu points, %d inliers, rms %.3g (%.2g of the box diagonal %.3g), "
-              "half sizes %.4f %.4f %.4f, ground z %.5f\n",
-              cloud.size(), r.inliers, r.rms, r.rms / size, size, p[7], p[8], p[9],
-              p[13] / Vec(p[10], p[11], p[12]).norm());
+  std::printf(
+      "  box on ground: %zu points, %d inliers, rms %.3g (%.2g of the box diagonal %.3g), "
+      "half sizes %.4f %.4f %.4f, ground z %.5f\n",
+      cloud.size(), r.inliers, r.rms, r.rms / size, size, p[7], p[8], p[9],
+      p[13] / Vec(p[10], p[11], p[12]).norm());
   EXPECT_LT(r.rms, 0.01 * size);
   EXPECT_GT(r.inliers, static_cast<int>(0.6 * cloud.size()));
 }
@@ -129,7 +133,8 @@ TEST(MorphRecovery, SphereBoxMorphRecoversT) {
   so.noise = 0.001;
   so.seed = 4;
   const SampledCloud s = SampleModel(morph(0.3), so);
-  const TreeFitResult r = FitModelTree(morph(0.6), s.cloud.points, s.cloud.normals, TreeFitOptions{});
+  const TreeFitResult r =
+      FitModelTree(morph(0.6), s.cloud.points, s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
   const double t = r.model.parameters().back();
   std::printf("  morph: t %.6f (truth 0.3), rms %.3g\n", t, r.rms);
@@ -142,7 +147,8 @@ void ParaboloidRecovery(double kappa, unsigned seed) {
   const Vec v(0.1, -0.2, 0.3), n = Vec(0.2, -0.3, 1).normalized();
   auto build = [](const Vec& vertex, const Vec& axis, double k) {
     Model m;
-    m.AddPrimitive(NodeType::kParaboloid, {vertex.x(), vertex.y(), vertex.z(), axis.x(), axis.y(), axis.z(), k});
+    m.AddPrimitive(NodeType::kParaboloid,
+                   {vertex.x(), vertex.y(), vertex.z(), axis.x(), axis.y(), axis.z(), k});
     return m;
   };
   SampleOptions so;
@@ -152,8 +158,8 @@ void ParaboloidRecovery(double kappa, unsigned seed) {
   so.seed = seed;
   const SampledCloud s = SampleModel(build(v, n, kappa), so);
   const Vec n0 = Eigen::AngleAxisd(3.0 * M_PI / 180.0, n.unitOrthogonal()) * n;
-  const TreeFitResult r = FitModelTree(build(v + Vec(0.03, 0.02, -0.03), n0, 0.8 * kappa), s.cloud.points,
-                                       s.cloud.normals, TreeFitOptions{});
+  const TreeFitResult r = FitModelTree(build(v + Vec(0.03, 0.02, -0.03), n0, 0.8 * kappa),
+                                       s.cloud.points, s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
   const Vec v_hat(p[0], p[1], p[2]), n_hat = Vec(p[3], p[4], p[5]).normalized();
@@ -168,16 +174,21 @@ void ParaboloidRecovery(double kappa, unsigned seed) {
   const Eigen::MatrixXd cov = testsupport::CramerRaoCovariance(residual, 6, Inliers(s), so.noise);
   const double sv = testsupport::Spread(cov, 0, 3), sa = testsupport::Spread(cov, 3, 2),
                sk = std::sqrt(cov(5, 5));
-  std::printf("  paraboloid kappa %.2f: vertex error %.3g (CR spread %.3g), axis %.3g rad (%.3g), "
-              "kappa %.3g (%.3g), rms %.4g\n",
-              kappa, (v_hat - v).norm(), sv, angle, sa, std::abs(p[6] - kappa), sk, r.rms);
+  std::printf(
+      "  paraboloid kappa %.2f: vertex error %.3g (CR spread %.3g), axis %.3g rad (%.3g), "
+      "kappa %.3g (%.3g), rms %.4g\n",
+      kappa, (v_hat - v).norm(), sv, angle, sa, std::abs(p[6] - kappa), sk, r.rms);
   EXPECT_LT((v_hat - v).norm(), 2.5 * sv);
   EXPECT_LT(angle, 2.5 * sa);
   EXPECT_LT(std::abs(p[6] - kappa), 2.5 * sk);
 }
 
-TEST(ParaboloidRecovery, CapWithCurvatureHalfWithinTwoAndAHalfCramerRaoSpreads) { ParaboloidRecovery(0.5, 31); }
-TEST(ParaboloidRecovery, CapWithCurvatureOneWithinTwoAndAHalfCramerRaoSpreads) { ParaboloidRecovery(1.0, 32); }
+TEST(ParaboloidRecovery, CapWithCurvatureHalfWithinTwoAndAHalfCramerRaoSpreads) {
+  ParaboloidRecovery(0.5, 31);
+}
+TEST(ParaboloidRecovery, CapWithCurvatureOneWithinTwoAndAHalfCramerRaoSpreads) {
+  ParaboloidRecovery(1.0, 32);
+}
 
 }  // namespace
 }  // namespace implicitfit

@@ -59,8 +59,8 @@ TEST(PartitionRecovery, OctagonOfNineCellsRecoversEveryLineAndEpsilon) {
   so.box_min = Vec(-1.5, -1.5, -1);
   so.box_max = Vec(1.5, 1.5, 1);
   const SampledCloud s = SampleModel(truth, so);
-  const TreeFitResult r =
-      FitModelTree(Octagon(0.12, 3.0 * M_PI / 180.0, 0.05), s.cloud.points, s.cloud.normals, TreeFitOptions{});
+  const TreeFitResult r = FitModelTree(Octagon(0.12, 3.0 * M_PI / 180.0, 0.05), s.cloud.points,
+                                       s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
   double worst_deg = 0;
@@ -70,11 +70,12 @@ TEST(PartitionRecovery, OctagonOfNineCellsRecoversEveryLineAndEpsilon) {
       const int node = i + 3 * j;
       const int b = r.model.nodes()[node].first_parameter;
       const Vec n = Vec(p[b], p[b + 1], p[b + 2]).normalized();
-      worst_deg = std::max(worst_deg, std::acos(std::min(1.0, n.dot(OctagonLine(i, j).n))) * 180.0 / M_PI);
+      worst_deg =
+          std::max(worst_deg, std::acos(std::min(1.0, n.dot(OctagonLine(i, j).n))) * 180.0 / M_PI);
     }
   const double eps_hat = p[r.model.nodes()[r.model.root()].first_parameter];
-  std::printf("  partition octagon: worst normal %.4f deg, epsilon %.5f (truth %.2f), rms %.4g\n", worst_deg,
-              eps_hat, epsilon, r.rms);
+  std::printf("  partition octagon: worst normal %.4f deg, epsilon %.5f (truth %.2f), rms %.4g\n",
+              worst_deg, eps_hat, epsilon, r.rms);
   EXPECT_LT(worst_deg, 0.5);
   EXPECT_NEAR(eps_hat, epsilon, 0.1 * epsilon);
 }

@@ -15,8 +15,8 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
-SampledCloud Sample(NodeType type, const std::vector<double>& params, double noise, unsigned seed, Vec view,
-                    double angle, Vec lo = Vec::Zero(), Vec hi = Vec::Zero()) {
+SampledCloud Sample(NodeType type, const std::vector<double>& params, double noise, unsigned seed,
+                    Vec view, double angle, Vec lo = Vec::Zero(), Vec hi = Vec::Zero()) {
   Model m;
   m.AddPrimitive(type, params);
   SampleOptions so;
@@ -44,15 +44,33 @@ struct ConvexCase {
 
 std::vector<ConvexCase> ConvexCases() {
   return {
-      {"ellipsoid cap", NodeType::kEllipsoid, {0, 0, 0, 1.5, 1.0, 0.7, 1, 0, 0, 0, 1, 0}, Vec(0, 0, 1), 50, Vec::Zero(), Vec::Zero()},
-      {"paraboloid", NodeType::kQuadric, {1, 1, 0, 0, 0, 0, 0, 0, -0.5, 0}, Vec::Zero(), 180, Vec(-0.6, -0.6, -0.1), Vec(0.6, 0.6, 0.8)},
-      {"sphere from one side", NodeType::kSphere, {0.2, 0.1, 0.0, 1.0}, Vec(1, 0.5, 0), 60, Vec::Zero(), Vec::Zero()},
+      {"ellipsoid cap",
+       NodeType::kEllipsoid,
+       {0, 0, 0, 1.5, 1.0, 0.7, 1, 0, 0, 0, 1, 0},
+       Vec(0, 0, 1),
+       50,
+       Vec::Zero(),
+       Vec::Zero()},
+      {"paraboloid",
+       NodeType::kQuadric,
+       {1, 1, 0, 0, 0, 0, 0, 0, -0.5, 0},
+       Vec::Zero(),
+       180,
+       Vec(-0.6, -0.6, -0.1),
+       Vec(0.6, 0.6, 0.8)},
+      {"sphere from one side",
+       NodeType::kSphere,
+       {0.2, 0.1, 0.0, 1.0},
+       Vec(1, 0.5, 0),
+       60,
+       Vec::Zero(),
+       Vec::Zero()},
   };
 }
 
 TEST(PatchFitter, ExactQuadricDataIsFittedExactlyByAQuadricPatch) {
-  const SampledCloud s = Sample(NodeType::kQuadric, {1, 1, 0, 0, 0, 0, 0, 0, -0.5, 0}, 0.0, 1, Vec::Zero(), 180,
-                                Vec(-0.6, -0.6, -0.1), Vec(0.6, 0.6, 0.8));
+  const SampledCloud s = Sample(NodeType::kQuadric, {1, 1, 0, 0, 0, 0, 0, 0, -0.5, 0}, 0.0, 1,
+                                Vec::Zero(), 180, Vec(-0.6, -0.6, -0.1), Vec(0.6, 0.6, 0.8));
   PatchFitOptions o;
   const PatchFitResult r = FitBernsteinPatch(s.cloud.points, s.cloud.normals, o);
   ASSERT_TRUE(r.success) << r.message;
@@ -74,15 +92,15 @@ TEST(PatchFitter, ConvexFitsOfNoisyConvexCapsAreCertifiedAndAsCloseAsUnconstrain
       EXPECT_TRUE(CertifyConvexity(degree, r.control_points.data()).convex);
       EXPECT_LE(r.rms, 1.1 * r.unconstrained_rms + 1e-12) << c.name << " degree " << degree;
       EXPECT_LE(r.rms, 1.5 * sigma) << c.name << " degree " << degree;
-      std::printf("  %-22s k=%d  rms %.5f  unconstrained %.5f  min eigenvalue %.3g  %.2f s\n", c.name, degree, r.rms,
-                  r.unconstrained_rms, r.min_eigenvalue, r.seconds);
+      std::printf("  %-22s k=%d  rms %.5f  unconstrained %.5f  min eigenvalue %.3g  %.2f s\n",
+                  c.name, degree, r.rms, r.unconstrained_rms, r.min_eigenvalue, r.seconds);
     }
 }
 
 TEST(PatchFitter, ConvexFitOfASaddleIsCertifiedAndStillFollowsTheNormals) {
   // z = x^2 - y^2 (hyperbolic paraboloid): no convex patch fits it exactly.
-  const SampledCloud s = Sample(NodeType::kQuadric, {1, -1, 0, 0, 0, 0, 0, 0, -0.5, 0}, 0.002, 3, Vec::Zero(), 180,
-                                Vec(-0.5, -0.5, -0.5), Vec(0.5, 0.5, 0.5));
+  const SampledCloud s = Sample(NodeType::kQuadric, {1, -1, 0, 0, 0, 0, 0, 0, -0.5, 0}, 0.002, 3,
+                                Vec::Zero(), 180, Vec(-0.5, -0.5, -0.5), Vec(0.5, 0.5, 0.5));
   // Reference: the best plane (z = 0 by symmetry), the simplest convex surface; its mean
   // normal angle is computed from the data's normals.
   double plane_angle = 0;
@@ -96,9 +114,12 @@ TEST(PatchFitter, ConvexFitOfASaddleIsCertifiedAndStillFollowsTheNormals) {
     ASSERT_TRUE(r.success) << r.message;
     EXPECT_TRUE(CertifyConvexity(degree, r.control_points.data()).convex);
     EXPECT_GT(r.min_eigenvalue, 0.0);
-    EXPECT_LT(r.mean_normal_angle_deg, plane_angle) << "worse than the best plane (" << plane_angle << " deg)";
-    std::printf("  saddle k=%d  rms %.4f (unconstrained %.5f)  normal angle %.1f deg (best plane %.1f)  min eigenvalue %.3g\n",
-                degree, r.rms, r.unconstrained_rms, r.mean_normal_angle_deg, plane_angle, r.min_eigenvalue);
+    EXPECT_LT(r.mean_normal_angle_deg, plane_angle)
+        << "worse than the best plane (" << plane_angle << " deg)";
+    std::printf(
+        "  saddle k=%d  rms %.4f (unconstrained %.5f)  normal angle %.1f deg (best plane %.1f)  "
+        "min eigenvalue %.3g\n",
+        degree, r.rms, r.unconstrained_rms, r.mean_normal_angle_deg, plane_angle, r.min_eigenvalue);
   }
 }
 
@@ -127,7 +148,8 @@ TEST(PatchFitter, ReportsNoConvergenceWhenTheIterationLimitStopsIt) {
   const PatchFitResult cut = FitBernsteinPatch(s.cloud.points, s.cloud.normals, o);
   EXPECT_TRUE(cut.success) << cut.message;  // usable, not converged
   EXPECT_EQ(cut.termination, FitTermination::kNoConvergence) << cut.message;
-  EXPECT_NE(cut.message.find("no convergence within 1 iterations"), std::string::npos) << cut.message;
+  EXPECT_NE(cut.message.find("no convergence within 1 iterations"), std::string::npos)
+      << cut.message;
   EXPECT_STREQ(FitTerminationName(cut.termination), "NO_CONVERGENCE");
 }
 

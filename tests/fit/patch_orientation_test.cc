@@ -35,7 +35,8 @@ TEST(PatchOrientation, FitsOfAnUpwardOrientedSaddleFollowTheNormals) {
       double cosines = 0.0;
       for (size_t i = 0; i < points.size(); ++i) {
         Eigen::Matrix<double, 3, 1> g;
-        BernsteinPatch::Derivatives(degree, r.tetrahedron, r.control_points.data(), points[i].data(), &g);
+        BernsteinPatch::Derivatives(degree, r.tetrahedron, r.control_points.data(),
+                                    points[i].data(), &g);
         cosines += g.normalized().dot(normals[i]);
       }
       const double mean = cosines / points.size();
@@ -47,8 +48,8 @@ TEST(PatchOrientation, FitsOfAnUpwardOrientedSaddleFollowTheNormals) {
       } else {
         EXPECT_GT(mean, 0.99);
       }
-      std::printf("  saddle k=%d%s: mean signed normal cosine %.4f, angle %.1f deg, rms %.4f\n", degree,
-                  convex ? " --convex" : "", mean, r.mean_normal_angle_deg, r.rms);
+      std::printf("  saddle k=%d%s: mean signed normal cosine %.4f, angle %.1f deg, rms %.4f\n",
+                  degree, convex ? " --convex" : "", mean, r.mean_normal_angle_deg, r.rms);
     }
 }
 

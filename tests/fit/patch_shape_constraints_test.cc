@@ -96,9 +96,11 @@ TEST(PatchShapeConstraints, ThroughVertexAndEdgeHoldExactly) {
   const double scale = MaxAbs(r.control_points);
   for (int s = 0; s <= 10; ++s) {
     const Vec x = x1 + (x2 - x1) * (s / 10.0);
-    EXPECT_LE(std::abs(BernsteinPatch::Evaluate(3, tet, r.control_points.data(), x.data())), 1e-14 * scale);
+    EXPECT_LE(std::abs(BernsteinPatch::Evaluate(3, tet, r.control_points.data(), x.data())),
+              1e-14 * scale);
   }
-  EXPECT_LE(std::abs(BernsteinPatch::Evaluate(3, tet, r.control_points.data(), x3.data())), 1e-14 * scale);
+  EXPECT_LE(std::abs(BernsteinPatch::Evaluate(3, tet, r.control_points.data(), x3.data())),
+            1e-14 * scale);
   EXPECT_LT(r.rms, 0.003);
   PatchFitOptions bad = o;
   bad.convex = true;

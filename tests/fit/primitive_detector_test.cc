@@ -35,24 +35,27 @@ std::vector<NodeType> KindsOf(const DetectionResult& r) {
 }
 
 // With IMPLICITFIT_DETECT_VERBOSE set: each ground-truth primitive, its match and IoU.
-void Describe(const std::vector<int>& labels, const std::vector<NodeType>& kinds, const DetectionResult& r,
-              const SegmentationMetrics& m) {
+void Describe(const std::vector<int>& labels, const std::vector<NodeType>& kinds,
+              const DetectionResult& r, const SegmentationMetrics& m) {
   if (!std::getenv("IMPLICITFIT_DETECT_VERBOSE")) return;
   std::vector<int> size(kinds.size(), 0);
   for (int l : labels)
     if (l >= 0) ++size[l];
-  std::printf("  tau %.4g spacing %.4g noise %.4g theta %.1f, %zu detected\n", r.threshold, r.spacing, r.noise,
-              r.normal_angle_deg, r.primitives.size());
+  std::printf("  tau %.4g spacing %.4g noise %.4g theta %.1f, %zu detected\n", r.threshold,
+              r.spacing, r.noise, r.normal_angle_deg, r.primitives.size());
   for (size_t g = 0; g < kinds.size(); ++g)
-    std::printf("  truth %zu %s %d -> %d %s %d IoU %.2f\n", g, NodeTypeName(kinds[g]), size[g], m.match[g],
-                m.match[g] >= 0 ? NodeTypeName(r.primitives[m.match[g]].kind) : "-",
-                m.match[g] >= 0 ? static_cast<int>(r.primitives[m.match[g]].points.size()) : 0, m.iou[g]);
+    std::printf("  truth %zu %s %d -> %d %s %d IoU %.2f\n", g, NodeTypeName(kinds[g]), size[g],
+                m.match[g], m.match[g] >= 0 ? NodeTypeName(r.primitives[m.match[g]].kind) : "-",
+                m.match[g] >= 0 ? static_cast<int>(r.primitives[m.match[g]].points.size()) : 0,
+                m.iou[g]);
   for (size_t d = 0; d < r.primitives.size(); ++d)
-    std::printf("  detected %zu %s %zu\n", d, NodeTypeName(r.primitives[d].kind), r.primitives[d].points.size());
+    std::printf("  detected %zu %s %zu\n", d, NodeTypeName(r.primitives[d].kind),
+                r.primitives[d].points.size());
 }
 
 SegmentationMetrics Score(const GeneratedScene& scene, const DetectionResult& r) {
-  const SegmentationMetrics m = CompareSegmentations(scene.labels, scene.kinds, r.labels, KindsOf(r));
+  const SegmentationMetrics m =
+      CompareSegmentations(scene.labels, scene.kinds, r.labels, KindsOf(r));
   Describe(scene.labels, scene.kinds, r, m);
   return m;
 }
@@ -174,29 +177,33 @@ TEST(PrimitiveDetector, RandomPointsGiveNoPrimitive) {
     cloud.normals.push_back(Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized());
   }
   const DetectionResult r = Detect(cloud);
-  EXPECT_TRUE(r.primitives.empty()) << r.primitives.size() << " primitives, first "
-                                    << NodeTypeName(r.primitives[0].kind) << " with "
-                                    << r.primitives[0].points.size() << " points";
+  EXPECT_TRUE(r.primitives.empty())
+      << r.primitives.size() << " primitives, first " << NodeTypeName(r.primitives[0].kind)
+      << " with " << r.primitives[0].points.size() << " points";
 }
 
 TEST(PrimitiveDetector, InvalidInputsAreRefused) {
   PointCloud cloud;
   cloud.points = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
   cloud.normals = {Eigen::Vector3d::UnitZ()};
-  EXPECT_THROW(DetectPrimitives(cloud.points, cloud.normals, {{1}, {0}}, 1.0), std::invalid_argument);
+  EXPECT_THROW(DetectPrimitives(cloud.points, cloud.normals, {{1}, {0}}, 1.0),
+               std::invalid_argument);
   cloud.normals.push_back(Eigen::Vector3d::UnitZ());
-  EXPECT_THROW(DetectPrimitives(cloud.points, cloud.normals, {{1}, {5}}, 1.0), std::invalid_argument);
+  EXPECT_THROW(DetectPrimitives(cloud.points, cloud.normals, {{1}, {5}}, 1.0),
+               std::invalid_argument);
   DetectionOptions bad;
   bad.kinds = {NodeType::kUnion};
-  EXPECT_THROW(DetectPrimitives(cloud.points, cloud.normals, {{1}, {0}}, 1.0, bad), std::invalid_argument);
+  EXPECT_THROW(DetectPrimitives(cloud.points, cloud.normals, {{1}, {0}}, 1.0, bad),
+               std::invalid_argument);
 }
 
 // Fit4CAD (GPL-3, read from ../shared/data only): noise-free CAD parts, no normals (estimated
 // and MST-oriented, as a user's run would), per-point labels and primitive kinds.
 TEST(PrimitiveDetector, Fit4CadRecall) {
   const std::string root = std::string(IMPLICITFIT_SHARED_DATA) + "/fit4cad/";
-  const std::vector<std::string> names = {"test_PC33", "test_PC34", "test_PC35", "test_PC21",
-                                          "train_PC124", "train_PC131", "train_PC145", "train_PC155"};
+  const std::vector<std::string> names = {"test_PC33",   "test_PC34",   "test_PC35",
+                                          "test_PC21",   "train_PC124", "train_PC131",
+                                          "train_PC145", "train_PC155"};
   if (!std::ifstream(root + "fit4cad_test_PC33.xyzl")) GTEST_SKIP() << "no " << root;
   int truth = 0, recovered = 0;
   for (const std::string& name : names) {
@@ -205,25 +212,27 @@ TEST(PrimitiveDetector, Fit4CadRecall) {
     EnsureOrientedNormals(&cloud);
     std::vector<int> labels = info.labels;
     for (int& l : labels) l -= 1;
-    const std::vector<NodeType> kinds = ReadFit4CadKinds(root + "fit4cad_" + name + "/" + name + "_implicit.txt");
+    const std::vector<NodeType> kinds =
+        ReadFit4CadKinds(root + "fit4cad_" + name + "/" + name + "_implicit.txt");
     const DetectionResult r = Detect(cloud);
     const SegmentationMetrics m = CompareSegmentations(labels, kinds, r.labels, KindsOf(r));
     Describe(labels, kinds, r, m);
-    std::printf("%s: recall %d/%d precision %d/%d mean IoU %.2f\n", name.c_str(), m.recovered, m.truth_counted,
-                m.precise, m.detected_counted, m.mean_iou);
+    std::printf("%s: recall %d/%d precision %d/%d mean IoU %.2f\n", name.c_str(), m.recovered,
+                m.truth_counted, m.precise, m.detected_counted, m.mean_iou);
     truth += m.truth_counted, recovered += m.recovered;
   }
   EXPECT_GE(static_cast<double>(recovered) / truth, 0.8);
 }
 
 TEST(PrimitiveDetector, CgalIcosahedronFaces) {
-  const std::string path = std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_ball_icosahedron_20planes_labeled.ply";
+  const std::string path =
+      std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_ball_icosahedron_20planes_labeled.ply";
   if (!std::ifstream(path)) GTEST_SKIP() << "no " << path;
   const PointCloud cloud = ReadCloudFile(path);
   const std::vector<int> labels = ReadPlyIntProperty(path, "segment_index");
   const DetectionResult r = Detect(cloud);
-  const SegmentationMetrics m =
-      CompareSegmentations(labels, std::vector<NodeType>(20, NodeType::kPlane), r.labels, KindsOf(r));
+  const SegmentationMetrics m = CompareSegmentations(
+      labels, std::vector<NodeType>(20, NodeType::kPlane), r.labels, KindsOf(r));
   Describe(labels, std::vector<NodeType>(20, NodeType::kPlane), r, m);
   EXPECT_GE(m.recovered, 19);
   EXPECT_GE(m.precision, 0.9);

@@ -30,7 +30,8 @@ TEST(PrimitiveFitFigures, MatchTheModelAtTheReturnedParameters) {
     SampledCloud s = SampleModel(truth, so);
     std::mt19937 rng(5);  // a few degrees of normal noise, so the mean angle is not ~0
     std::normal_distribution<double> noise(0.0, 0.05);
-    for (auto& n : s.cloud.normals) n = (n + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
+    for (auto& n : s.cloud.normals)
+      n = (n + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
     PrimitiveFitOptions o;
     o.kind = c.kind;
     const PrimitiveFitResult r = FitPrimitive(s.cloud.points, s.cloud.normals, o);
@@ -43,7 +44,8 @@ TEST(PrimitiveFitFigures, MatchTheModelAtTheReturnedParameters) {
       const Eigen::Vector3d g = fitted.Gradient(s.cloud.points[i], &f);
       ss += f * f;
       max_abs = std::max(max_abs, std::abs(f));
-      const double cosine = std::abs(g.dot(s.cloud.normals[i])) / (g.norm() * s.cloud.normals[i].norm());
+      const double cosine =
+          std::abs(g.dot(s.cloud.normals[i])) / (g.norm() * s.cloud.normals[i].norm());
       angles += std::acos(std::min(1.0, cosine)) * 180.0 / M_PI;
     }
     const double n = static_cast<double>(r.inliers.size());

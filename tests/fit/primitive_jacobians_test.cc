@@ -1,9 +1,11 @@
 // The closed-form derivatives of fit/primitive_jacobians.h against references that do not come
 // from that file: central differences of the model evaluators (model/*.h) in double, and
 // forward-mode ceres::Jet through the same evaluators; and the compressed residual block
-// (fit/compressed_distance_cost.h) against the normal equations of the Jet path. One typed suite for every primitive;
-// random parameters and points from a seeded RNG, including the cone's apex branch (points
-// behind the apex) and points inside and outside every surface.
+// (fit/compressed_distance_cost.h) against the normal equations of the Jet path. One typed suite
+// for every primitive; random parameters and points from a seeded RNG, including the cone's apex
+// branch (points behind the apex) and points inside and outside every surface.
+#include "fit/primitive_jacobians.h"
+
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -16,7 +18,6 @@
 
 #include "fit/batched_distance_cost.h"
 #include "fit/compressed_distance_cost.h"
-#include "fit/primitive_jacobians.h"
 #include "model/model.h"
 
 namespace implicitfit {
@@ -82,7 +83,8 @@ double F(const std::vector<double>& p, const Vec& x) {
 // axis) or the finite differences would straddle one.
 template <typename E>
 bool NearKink(const std::vector<double>& p, const Vec& x, double margin) {
-  if (E::kNumParameters == 4) return false;  // plane, sphere: the centre is never sampled closer than 0.05
+  if (E::kNumParameters == 4)
+    return false;  // plane, sphere: the centre is never sampled closer than 0.05
   const Vec c(p[0], p[1], p[2]), u = Vec(p[3], p[4], p[5]).normalized(), d = x - c;
   const double h = u.dot(d), rho = u.cross(d).norm();
   if (rho < margin) return true;
@@ -108,8 +110,8 @@ std::vector<int> FieldSizes() {
 
 template <typename E>
 class PrimitiveJacobians : public ::testing::Test {};
-using Evaluators =
-    ::testing::Types<PlaneEvaluator, SphereEvaluator, CylinderEvaluator, ConeEvaluator, TorusEvaluator>;
+using Evaluators = ::testing::Types<PlaneEvaluator, SphereEvaluator, CylinderEvaluator,
+                                    ConeEvaluator, TorusEvaluator>;
 TYPED_TEST_SUITE(PrimitiveJacobians, Evaluators);
 
 TYPED_TEST(PrimitiveJacobians, MatchTheEvaluatorAndItsCentralDifferences) {
@@ -171,7 +173,8 @@ TYPED_TEST(PrimitiveJacobians, MatchForwardModeJets) {
       const Jet r = E::Evaluate(pj, xj);
       double dp[P];
       f(x.data(), dp, nullptr);
-      for (int j = 0; j < P; ++j) EXPECT_NEAR(dp[j], r.v[j], 1e-11 * (1.0 + std::abs(r.v[j]))) << "parameter " << j;
+      for (int j = 0; j < P; ++j)
+        EXPECT_NEAR(dp[j], r.v[j], 1e-11 * (1.0 + std::abs(r.v[j]))) << "parameter " << j;
     }
   }
 }
@@ -199,7 +202,8 @@ TYPED_TEST(PrimitiveJacobians, BatchedCostAgreesWithItsJetPath) {
   const BatchedDistanceCost<E, true> analytic(xyz.data(), indices, sizes);
   const BatchedDistanceCost<E, false> jets(xyz.data(), indices, sizes);
   std::vector<const double*> blocks;
-  for (int b = 0, at = 0; b < static_cast<int>(sizes.size()); at += sizes[b], ++b) blocks.push_back(p.data() + at);
+  for (int b = 0, at = 0; b < static_cast<int>(sizes.size()); at += sizes[b], ++b)
+    blocks.push_back(p.data() + at);
   const size_t n = indices.size();
   std::vector<double> ra(n), rj(n), r0(n);
   std::vector<std::vector<double>> ja, jj;
@@ -223,10 +227,12 @@ TYPED_TEST(PrimitiveJacobians, BatchedCostAgreesWithItsJetPath) {
   }
   for (size_t b = 0; b < sizes.size(); ++b) {
     if (b == 1) {
-      for (double v : ja[b]) EXPECT_TRUE(std::isnan(v)) << "the constant block's Jacobian was written";
+      for (double v : ja[b])
+        EXPECT_TRUE(std::isnan(v)) << "the constant block's Jacobian was written";
       continue;
     }
-    for (size_t k = 0; k < ja[b].size(); ++k) EXPECT_NEAR(ja[b][k], jj[b][k], 1e-11 * (1.0 + std::abs(jj[b][k])));
+    for (size_t k = 0; k < ja[b].size(); ++k)
+      EXPECT_NEAR(ja[b][k], jj[b][k], 1e-11 * (1.0 + std::abs(jj[b][k])));
   }
 }
 
@@ -246,7 +252,8 @@ TYPED_TEST(PrimitiveJacobians, CompressedCostKeepsTheNormalEquations) {
     const int n = static_cast<int>(indices.size());
     const std::vector<int> sizes = FieldSizes<E>();
     std::vector<const double*> blocks;
-    for (int b = 0, at = 0; b < static_cast<int>(sizes.size()); at += sizes[b], ++b) blocks.push_back(p.data() + at);
+    for (int b = 0, at = 0; b < static_cast<int>(sizes.size()); at += sizes[b], ++b)
+      blocks.push_back(p.data() + at);
 
     // Reference: the full n x P Jacobian and residuals from the Jet path.
     const BatchedDistanceCost<E, false> full(xyz.data(), indices, sizes);
@@ -284,7 +291,8 @@ TYPED_TEST(PrimitiveJacobians, CompressedCostKeepsTheNormalEquations) {
       Eigen::MatrixXd Jc(P + 1, free.size());
       for (size_t b = 0, col = 0; b < sizes.size(); ++b) {
         if (static_cast<int>(b) == constant) {
-          for (double v : jb[b]) EXPECT_TRUE(std::isnan(v)) << "the constant block's Jacobian was written";
+          for (double v : jb[b])
+            EXPECT_TRUE(std::isnan(v)) << "the constant block's Jacobian was written";
           continue;
         }
         for (int j = 0; j < sizes[b]; ++j, ++col)
@@ -294,7 +302,8 @@ TYPED_TEST(PrimitiveJacobians, CompressedCostKeepsTheNormalEquations) {
       const Eigen::VectorXd gc = Jc.transpose() * rc;
       const double scale_a = A.cwiseAbs().maxCoeff(), scale_g = g.cwiseAbs().maxCoeff() + 1e-300;
       for (size_t u = 0; u < free.size(); ++u) {
-        EXPECT_NEAR(gc[u], g[free[u]], 1e-9 * scale_g) << "trial " << trial << " column " << free[u];
+        EXPECT_NEAR(gc[u], g[free[u]], 1e-9 * scale_g)
+            << "trial " << trial << " column " << free[u];
         for (size_t v = 0; v < free.size(); ++v)
           EXPECT_NEAR(Ac(u, v), A(free[u], free[v]), 1e-10 * scale_a) << "trial " << trial;
       }

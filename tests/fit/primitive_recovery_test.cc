@@ -25,7 +25,9 @@ struct Quantity {
   std::function<double(const std::vector<double>&)> q;
 };
 
-Vec Unit(const std::vector<double>& p, int at) { return Vec(p[at], p[at + 1], p[at + 2]).normalized(); }
+Vec Unit(const std::vector<double>& p, int at) {
+  return Vec(p[at], p[at + 1], p[at + 2]).normalized();
+}
 
 // Unit axis components, with the sign aligned to the truth's axis.
 std::vector<Quantity> AxisQuantities(int at, const std::vector<double>& truth) {
@@ -43,7 +45,8 @@ std::vector<Quantity> AxisQuantities(int at, const std::vector<double>& truth) {
 std::vector<Quantity> Coordinates(const std::string& name, int at) {
   std::vector<Quantity> out;
   for (int k = 0; k < 3; ++k)
-    out.push_back({name + "[" + std::to_string(k) + "]", [at, k](const std::vector<double>& p) { return p[at + k]; }});
+    out.push_back({name + "[" + std::to_string(k) + "]",
+                   [at, k](const std::vector<double>& p) { return p[at + k]; }});
   return out;
 }
 
@@ -61,7 +64,9 @@ std::vector<Case> Cases() {
   {
     std::vector<double> t = {0.2, -0.3, 0.9327379053088815, 0.4};  // unit normal
     Case c{NodeType::kPlane, t, 1.0, Vec::Zero(), 180, AxisQuantities(0, t)};
-    c.quantities.push_back({"offset", [](const std::vector<double>& p) { return p[3] / Vec(p[0], p[1], p[2]).norm(); }});
+    c.quantities.push_back({"offset", [](const std::vector<double>& p) {
+                              return p[3] / Vec(p[0], p[1], p[2]).norm();
+                            }});
     cases.push_back(c);
   }
   {
@@ -76,10 +81,11 @@ std::vector<Case> Cases() {
     c.quantities.push_back({"radius", [](const std::vector<double>& p) { return p[6]; }});
     const Vec p0(t[0], t[1], t[2]);
     for (int k = 0; k < 3; ++k)
-      c.quantities.push_back({"axis point[" + std::to_string(k) + "]", [p0, k](const std::vector<double>& p) {
-                                const Vec q(p[0], p[1], p[2]), a = Unit(p, 3);
-                                return (q + a * a.dot(p0 - q))[k];
-                              }});
+      c.quantities.push_back(
+          {"axis point[" + std::to_string(k) + "]", [p0, k](const std::vector<double>& p) {
+             const Vec q(p[0], p[1], p[2]), a = Unit(p, 3);
+             return (q + a * a.dot(p0 - q))[k];
+           }});
     cases.push_back(c);
   }
   {
@@ -149,13 +155,16 @@ TEST_P(PrimitiveRecovery, ErrorsStayWithinTwiceTheCramerRaoSpread) {
         const double h = 1e-6;
         plus[j] += h;
         minus[j] -= h;
-        for (size_t i = 0; i < in.size(); ++i) J(i, j) = (F(c.kind, plus, in[i]) - F(c.kind, minus, in[i])) / (2 * h);
+        for (size_t i = 0; i < in.size(); ++i)
+          J(i, j) = (F(c.kind, plus, in[i]) - F(c.kind, minus, in[i])) / (2 * h);
       }
       const Eigen::MatrixXd info = J.transpose() * J;
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(info);
       Eigen::VectorXd inv = eig.eigenvalues();
-      for (int k = 0; k < P; ++k) inv[k] = inv[k] > 1e-9 * eig.eigenvalues().maxCoeff() ? 1.0 / inv[k] : 0.0;
-      const Eigen::MatrixXd pinv = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+      for (int k = 0; k < P; ++k)
+        inv[k] = inv[k] > 1e-9 * eig.eigenvalues().maxCoeff() ? 1.0 / inv[k] : 0.0;
+      const Eigen::MatrixXd pinv =
+          eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
       for (size_t q = 0; q < c.quantities.size(); ++q) {
         Eigen::VectorXd g(P);
         for (int j = 0; j < P; ++j) {
@@ -174,8 +183,9 @@ TEST_P(PrimitiveRecovery, ErrorsStayWithinTwiceTheCramerRaoSpread) {
     for (double e : errors[q]) ss += e * e, mean += e / errors[q].size();
     const double rms = std::sqrt(ss / errors[q].size());
     if (ideal[q] < 1e-12) continue;  // a component fixed by the geometry (e.g. axis along itself)
-    EXPECT_LE(rms, kMultiple * ideal[q]) << NodeTypeName(c.kind) << " " << c.quantities[q].name << ": rms error "
-                                         << rms << " vs ideal " << ideal[q] << " (ratio " << rms / ideal[q] << ")";
+    EXPECT_LE(rms, kMultiple * ideal[q])
+        << NodeTypeName(c.kind) << " " << c.quantities[q].name << ": rms error " << rms
+        << " vs ideal " << ideal[q] << " (ratio " << rms / ideal[q] << ")";
     std::printf("  %-9s %-16s rms %.3g  mean %.3g  ideal %.3g  ratio %.2f\n", NodeTypeName(c.kind),
                 c.quantities[q].name.c_str(), rms, mean, ideal[q], rms / ideal[q]);
   }

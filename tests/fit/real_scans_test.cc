@@ -27,7 +27,8 @@ const std::string kData = IMPLICITFIT_SHARED_DATA;
 bool Exists(const std::string& path) { return static_cast<bool>(std::ifstream(path)); }
 
 TEST(RealScans, CgalSpheresMatchTheReferenceSpheres) {
-  const std::string cloud_path = kData + "/cgal/cgal_spheres_10.ply", ref_path = kData + "/cgal/reference_spheres.txt";
+  const std::string cloud_path = kData + "/cgal/cgal_spheres_10.ply",
+                    ref_path = kData + "/cgal/reference_spheres.txt";
   if (!Exists(cloud_path) || !Exists(ref_path)) GTEST_SKIP() << "shared data absent";
   const PointCloud cloud = ReadCloudFile(cloud_path);
   ASSERT_TRUE(cloud.has_normals());
@@ -35,7 +36,8 @@ TEST(RealScans, CgalSpheresMatchTheReferenceSpheres) {
   std::string line;
   int spheres = 0;
   while (std::getline(ref, line)) {
-    if (line.empty() || line[0] == '#' || line.find("cgal_spheres_10.ply") == std::string::npos) continue;
+    if (line.empty() || line[0] == '#' || line.find("cgal_spheres_10.ply") == std::string::npos)
+      continue;
     std::istringstream in(line);
     std::string file;
     Vec c;
@@ -101,7 +103,8 @@ std::map<int, GroundTruth> ReadImplicit(const std::string& path) {
 // First-order distance to the ground-truth surface (Fit4CAD quadric or plane).
 double GroundTruthDistance(const GroundTruth& g, const Vec& x) {
   const auto& q = g.coefficients;
-  if (g.type == "Plane") return (q[0] * x.x() + q[1] * x.y() + q[2] * x.z() + q[3]) / Vec(q[0], q[1], q[2]).norm();
+  if (g.type == "Plane")
+    return (q[0] * x.x() + q[1] * x.y() + q[2] * x.z() + q[3]) / Vec(q[0], q[1], q[2]).norm();
   Eigen::Matrix3d A;
   A << q[0], q[3], q[4], q[3], q[1], q[5], q[4], q[5], q[2];
   const Vec b(q[6], q[7], q[8]);
@@ -110,12 +113,14 @@ double GroundTruthDistance(const GroundTruth& g, const Vec& x) {
 }
 
 TEST(RealScans, Fit4CadPrimitivesLieOnTheGroundTruthSurfaces) {
-  const std::vector<std::string> parts = {"test_PC33", "test_PC34", "test_PC35", "test_PC21",
-                                          "train_PC124", "train_PC131", "train_PC145", "train_PC155"};
+  const std::vector<std::string> parts = {"test_PC33",   "test_PC34",   "test_PC35",
+                                          "test_PC21",   "train_PC124", "train_PC131",
+                                          "train_PC145", "train_PC155"};
   int checked = 0;
   for (const std::string& part : parts) {
     const std::string cloud_path = kData + "/fit4cad/fit4cad_" + part + ".xyzl";
-    const std::string truth_path = kData + "/fit4cad/fit4cad_" + part + "/" + part + "_implicit.txt";
+    const std::string truth_path =
+        kData + "/fit4cad/fit4cad_" + part + "/" + part + "_implicit.txt";
     if (!Exists(cloud_path) || !Exists(truth_path)) GTEST_SKIP() << "shared data absent";
     CloudFileInfo info;
     PointCloud cloud = ReadCloudFile(cloud_path, &info);
@@ -126,20 +131,27 @@ TEST(RealScans, Fit4CadPrimitivesLieOnTheGroundTruthSurfaces) {
     const double diagonal = (hi - lo).norm();
     for (const auto& [label, truth] : ReadImplicit(truth_path)) {
       NodeType kind;
-      if (truth.type == "Plane") kind = NodeType::kPlane;
-      else if (truth.type == "Sphere") kind = NodeType::kSphere;
-      else if (truth.type == "Cylinder") kind = NodeType::kCylinder;
-      else if (truth.type == "Cone") kind = NodeType::kCone;
-      else continue;  // tori: 35 quartic coefficients in an unchecked order
+      if (truth.type == "Plane")
+        kind = NodeType::kPlane;
+      else if (truth.type == "Sphere")
+        kind = NodeType::kSphere;
+      else if (truth.type == "Cylinder")
+        kind = NodeType::kCylinder;
+      else if (truth.type == "Cone")
+        kind = NodeType::kCone;
+      else
+        continue;  // tori: 35 quartic coefficients in an unchecked order
       std::vector<Vec> pts, nrm;
       for (size_t i = 0; i < cloud.size(); ++i)
-        if (info.labels[i] == label) pts.push_back(cloud.points[i]), nrm.push_back(cloud.normals[i]);
+        if (info.labels[i] == label)
+          pts.push_back(cloud.points[i]), nrm.push_back(cloud.normals[i]);
       if (pts.size() < 50) continue;
       PrimitiveFitOptions o;
       o.kind = kind;
       o.compute_covariance = false;
       const PrimitiveFitResult f = FitPrimitive(pts, nrm, o);
-      ASSERT_TRUE(f.success) << part << " primitive " << label << " (" << truth.type << "): " << f.message;
+      ASSERT_TRUE(f.success) << part << " primitive " << label << " (" << truth.type
+                             << "): " << f.message;
       Model m;
       m.AddPrimitive(kind, f.parameters);
       double ss = 0, ss_fit = 0;
@@ -152,8 +164,9 @@ TEST(RealScans, Fit4CadPrimitivesLieOnTheGroundTruthSurfaces) {
         ss += d * d;
       }
       const double rms = std::sqrt(ss / pts.size());
-      EXPECT_LT(rms, 1e-4 * diagonal) << part << " primitive " << label << " (" << truth.type << ", " << pts.size()
-                                      << " points): fitted surface is " << rms << " from the ground truth";
+      EXPECT_LT(rms, 1e-4 * diagonal)
+          << part << " primitive " << label << " (" << truth.type << ", " << pts.size()
+          << " points): fitted surface is " << rms << " from the ground truth";
       // Noise-free CAD samples: every labelled point is on the fitted surface, including those
       // the fitter left out as inliers because their estimated normals at the primitive's
       // border mix in the neighbouring surface.

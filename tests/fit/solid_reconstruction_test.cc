@@ -45,10 +45,11 @@ void CheckReconstruction(const GeneratedSolid& solid, unsigned seed) {
       FitLabelledPrimitives(cloud.cloud.points, cloud.cloud.normals, inlier_labels, kinds, seed);
   SolidReconstructionOptions options;
   options.seed = seed;
-  const SolidReconstruction r = ReconstructSolid(cloud.cloud.points, cloud.cloud.normals, scene, options);
+  const SolidReconstruction r =
+      ReconstructSolid(cloud.cloud.points, cloud.cloud.normals, scene, options);
   ASSERT_TRUE(r.success) << r.message << " expression " << r.expression;
-  std::printf("  expression %s  rms %.5f (sigma %.5f)  normal agreement %.4f  %.1f s\n", r.expression.c_str(), r.rms,
-              sigma, r.normal_agreement, r.seconds);
+  std::printf("  expression %s  rms %.5f (sigma %.5f)  normal agreement %.4f  %.1f s\n",
+              r.expression.c_str(), r.rms, sigma, r.normal_agreement, r.seconds);
 
   // RMS first-order distance at noise-free truth points.
   SampleOptions clean = so;
@@ -86,8 +87,8 @@ void CheckReconstruction(const GeneratedSolid& solid, unsigned seed) {
 
   // Fillets: one smooth blend, its radius within 10% of the truth's (creases at 90 degrees).
   for (const BlendEstimate& e : r.blends)
-    std::printf("  blend %s %s delta %.4f eps %.4f, %d transition points\n", e.node.c_str(), e.type.c_str(), e.delta,
-                e.epsilon, e.transition_points);
+    std::printf("  blend %s %s delta %.4f eps %.4f, %d transition points\n", e.node.c_str(),
+                e.type.c_str(), e.delta, e.epsilon, e.transition_points);
   ASSERT_EQ(r.blends.size(), 1u);
   const BlendEstimate& b = r.blends[0];
   const double truth_radius = solid.fillet_delta / (4 * (1 - std::cos(M_PI / 4)));
@@ -95,14 +96,17 @@ void CheckReconstruction(const GeneratedSolid& solid, unsigned seed) {
   EXPECT_NEAR(b.fillet_radius, truth_radius, 0.1 * truth_radius);
   EXPECT_GT(b.sd_delta, 0.0);
   EXPECT_LT(b.sd_delta, 0.1 * b.delta);
-  std::printf("  truth-point rms %.5f  sign agreement %.4f  blend %s delta %.4f +- %.4f eps %.4f +- %.4f "
-              "radius %.4f (truth %.4f), %d transition points\n",
-              rms, sign_share, b.type.c_str(), b.delta, b.sd_delta, b.epsilon, b.sd_epsilon, b.fillet_radius,
-              truth_radius, b.transition_points);
+  std::printf(
+      "  truth-point rms %.5f  sign agreement %.4f  blend %s delta %.4f +- %.4f eps %.4f +- %.4f "
+      "radius %.4f (truth %.4f), %d transition points\n",
+      rms, sign_share, b.type.c_str(), b.delta, b.sd_delta, b.epsilon, b.sd_epsilon,
+      b.fillet_radius, truth_radius, b.transition_points);
 }
 
 TEST(SolidReconstruction, RoundedBox) { CheckReconstruction(RoundedBoxSolid(), 3); }
-TEST(SolidReconstruction, PlateWithFilletedBore) { CheckReconstruction(PlateWithFilletedBoreSolid(), 4); }
+TEST(SolidReconstruction, PlateWithFilletedBore) {
+  CheckReconstruction(PlateWithFilletedBoreSolid(), 4);
+}
 TEST(SolidReconstruction, BossOnSlab) { CheckReconstruction(BossOnSlabSolid(), 5); }
 
 // The separation alone: a box minus a hole from labelled cells (exact Boolean algebra).

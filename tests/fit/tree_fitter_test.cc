@@ -68,23 +68,26 @@ TEST(TreeFitter, RecoversTwoPlanesAndTheBlendOfARoundedCrease) {
   EXPECT_NEAR(p[8], delta, 0.1 * delta);
   EXPECT_NEAR(p[9], epsilon, 0.2 * epsilon);
   EXPECT_LT(r.rms, 1.5 * so.noise);
-  std::printf("  delta %.4f (truth %.3f)  epsilon %.4f (truth %.3f)  rms %.5f  sigma %.5f\n", p[8], delta, p[9],
-              epsilon, r.rms, r.sigma);
+  std::printf("  delta %.4f (truth %.3f)  epsilon %.4f (truth %.3f)  rms %.5f  sigma %.5f\n", p[8],
+              delta, p[9], epsilon, r.rms, r.sigma);
 }
 
 // A rounded box: the intersection of six planes (a cube of half-size 1) with one blend for
 // all its edges, folded left to right.
-Model RoundedBox(const std::vector<Vec>& normals, const std::vector<double>& offsets, double delta, double epsilon) {
+Model RoundedBox(const std::vector<Vec>& normals, const std::vector<double>& offsets, double delta,
+                 double epsilon) {
   Model m;
   std::vector<int> faces;
   for (size_t i = 0; i < normals.size(); ++i)
-    faces.push_back(m.AddPrimitive(NodeType::kPlane, {normals[i].x(), normals[i].y(), normals[i].z(), offsets[i]}));
+    faces.push_back(m.AddPrimitive(NodeType::kPlane,
+                                   {normals[i].x(), normals[i].y(), normals[i].z(), offsets[i]}));
   m.AddOperator(NodeType::kIntersection, faces, delta, epsilon, 2);
   return m;
 }
 
 TEST(TreeFitter, RecoversARoundedBoxFromASampledScan) {
-  const std::vector<Vec> n = {Vec(1, 0, 0), Vec(-1, 0, 0), Vec(0, 1, 0), Vec(0, -1, 0), Vec(0, 0, 1), Vec(0, 0, -1)};
+  const std::vector<Vec> n = {Vec(1, 0, 0),  Vec(-1, 0, 0), Vec(0, 1, 0),
+                              Vec(0, -1, 0), Vec(0, 0, 1),  Vec(0, 0, -1)};
   const Model truth = RoundedBox(n, std::vector<double>(6, 1.0), 0.15, 0.1);
   SampleOptions so;
   so.count = 6000;
@@ -92,7 +95,8 @@ TEST(TreeFitter, RecoversARoundedBoxFromASampledScan) {
   so.seed = 11;
   const SampledCloud s = SampleModel(truth, so);
   std::vector<Vec> tilted;
-  for (size_t i = 0; i < n.size(); ++i) tilted.push_back((n[i] + Vec(0.03, -0.02, 0.025)).normalized());
+  for (size_t i = 0; i < n.size(); ++i)
+    tilted.push_back((n[i] + Vec(0.03, -0.02, 0.025)).normalized());
   const Model init = RoundedBox(tilted, {1.05, 0.96, 1.04, 0.97, 1.03, 0.95}, 0.25, 0.1);
   const TreeFitResult r = FitModelTree(init, s.cloud.points, s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
@@ -105,7 +109,8 @@ TEST(TreeFitter, RecoversARoundedBoxFromASampledScan) {
   EXPECT_NEAR(p[24], 0.15, 0.015);
   EXPECT_NEAR(p[25], 0.1, 0.02);
   EXPECT_LT(r.rms, 1.5 * so.noise);
-  std::printf("  rounded box: delta %.4f (0.15) epsilon %.4f (0.1) rms %.5f\n", p[24], p[25], r.rms);
+  std::printf("  rounded box: delta %.4f (0.15) epsilon %.4f (0.1) rms %.5f\n", p[24], p[25],
+              r.rms);
 }
 
 TEST(TreeFitter, FixedFieldsKeepTheirValues) {
@@ -128,7 +133,8 @@ TEST(TreeFitter, FixedFieldsKeepTheirValues) {
 }
 
 TEST(TreeFitter, FitsTheRealFin90CreaseScan) {
-  const std::string path = std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_fin90_two_planes_crease.xyz";
+  const std::string path =
+      std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_fin90_two_planes_crease.xyz";
   if (!std::ifstream(path)) GTEST_SKIP() << "shared data absent: " << path;
   const PointCloud cloud = ReadCloudFile(path);
   // Initial guess, as a user would make it: split the normals into two groups (2-means on the
@@ -161,14 +167,18 @@ TEST(TreeFitter, FitsTheRealFin90CreaseScan) {
   Vec lo = cloud.points[0], hi = lo;
   for (const auto& x : cloud.points) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   const double size = (hi - lo).norm();
-  init.AddOperator(convex ? NodeType::kIntersection : NodeType::kUnion, {a, b}, 0.05 * size, 0.025 * size, 2);
+  init.AddOperator(convex ? NodeType::kIntersection : NodeType::kUnion, {a, b}, 0.05 * size,
+                   0.025 * size, 2);
   TreeFitOptions o;
   const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, o);
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
-  const double angle = std::acos(std::abs(Vec(p[0], p[1], p[2]).normalized().dot(Vec(p[4], p[5], p[6]).normalized())));
-  std::printf("  fin90: planes at %.2f deg, rms %.3g (%.3g of the extent), inliers %d of %zu, delta %.3g eps %.3g\n",
-              angle * 180 / M_PI, r.rms, r.rms / size, r.inliers, cloud.size(), p[8], p[9]);
+  const double angle = std::acos(
+      std::abs(Vec(p[0], p[1], p[2]).normalized().dot(Vec(p[4], p[5], p[6]).normalized())));
+  std::printf(
+      "  fin90: planes at %.2f deg, rms %.3g (%.3g of the extent), inliers %d of %zu, delta %.3g "
+      "eps %.3g\n",
+      angle * 180 / M_PI, r.rms, r.rms / size, r.inliers, cloud.size(), p[8], p[9]);
   // The file is described as two planes at 90 degrees, but its PCA normals turn continuously
   // over most of the scan: two planes and one blend leave an RMS of ~2.4% of the extent and
   // the planes come out near 73 degrees (an open question, see the README). What is checked:

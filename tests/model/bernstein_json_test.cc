@@ -12,7 +12,9 @@ namespace {
 
 using nlohmann::json;
 
-json Doc(const json& root) { return {{"format", "implicitfit-model"}, {"version", 1}, {"root", root}}; }
+json Doc(const json& root) {
+  return {{"format", "implicitfit-model"}, {"version", 1}, {"root", root}};
+}
 
 json Patch(int k, const std::vector<double>& b) {
   return {{"type", "bernstein_patch"},
@@ -34,8 +36,9 @@ TEST(BernsteinJson, ReadsEvaluatesAndRoundTripsExactly) {
     const Model m = ModelFromJson(doc);
     ASSERT_EQ(m.nodes()[0].type, NodeType::kBernsteinPatch);
     EXPECT_EQ(m.nodes()[0].degree, k);
-    const std::array<Eigen::Vector3d, 4> corners = {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
-                                                    Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, 0, 0)};
+    const std::array<Eigen::Vector3d, 4> corners = {
+        Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1),
+        Eigen::Vector3d(0, 0, 0)};
     const Eigen::Vector3d x(0.2, -0.3, 0.4);
     const double* p = m.parameters().data() + m.nodes()[0].first_parameter;
     EXPECT_NEAR(m.EvaluateNode(0, m.parameters().data(), x.data()), oracle::Patch(k, b, corners, x),

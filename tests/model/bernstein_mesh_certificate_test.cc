@@ -1,12 +1,13 @@
 // Test 4 of NOTES.md G-1: C1 + every tetrahedron certified => convex on the whole box, checked
 // by the tangent-plane sampling test across tetrahedra; and the C0 concave-kink control.
+#include "model/bernstein_mesh_certificate.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <random>
 
 #include "model/bernstein_conversion.h"
-#include "model/bernstein_mesh_certificate.h"
 #include "model/bernstein_mesh_continuity.h"
 
 namespace implicitfit {
@@ -63,7 +64,8 @@ TEST(BernsteinMeshCertificate, RandomCertifiedC1MeshesPassSamplingOverTheWholeBo
     EXPECT_LE(cert.c1_defect, 1e-12);
     // The perturbation (a generic C1 spline, not a global polynomial: test 1 shows its
     // Hessian jumps) is not negligible against the quadric's control points.
-    EXPECT_GT(eps * 1.0, 1e-3 * Eigen::Map<const Eigen::VectorXd>(b.data(), b.size()).cwiseAbs().maxCoeff());
+    EXPECT_GT(eps * 1.0,
+              1e-3 * Eigen::Map<const Eigen::VectorXd>(b.data(), b.size()).cwiseAbs().maxCoeff());
     MeshSamplingOptions options;
     options.segments = 10000;
     options.seed = 100 + trial;

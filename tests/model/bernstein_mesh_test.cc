@@ -67,7 +67,8 @@ TEST(BernsteinMesh, EvaluatesEachTetrahedronsPolynomialAndExtrapolatesOutside) {
     m.AddBernsteinMesh(k, g, 0, b);
     for (int s = 0; s < 300; ++s) {
       // Inside: the oracle on the tetrahedron that contains x (found by brute force).
-      const Vec x = g.BoxMin() + (g.BoxMax() - g.BoxMin()).cwiseProduct(Vec(w(rng), w(rng), w(rng)));
+      const Vec x =
+          g.BoxMin() + (g.BoxMax() - g.BoxMin()).cwiseProduct(Vec(w(rng), w(rng), w(rng)));
       long long owner = -1;
       for (long long t = 0; t < g.NumTetrahedra() && owner < 0; ++t)
         if ((oracle::Barycentric(Corners(g, t), x).array() >= -1e-12).all()) owner = t;
@@ -79,8 +80,9 @@ TEST(BernsteinMesh, EvaluatesEachTetrahedronsPolynomialAndExtrapolatesOutside) {
     // (on edges and corners of the box several tetrahedra hold it: any of them is allowed).
     int outside = 0;
     for (int s = 0; s < 300; ++s) {
-      const Vec x = g.BoxMin() - Vec::Constant(0.5) +
-                    (g.BoxMax() - g.BoxMin() + Vec::Constant(1.0)).cwiseProduct(Vec(w(rng), w(rng), w(rng)));
+      const Vec x =
+          g.BoxMin() - Vec::Constant(0.5) +
+          (g.BoxMax() - g.BoxMin() + Vec::Constant(1.0)).cwiseProduct(Vec(w(rng), w(rng), w(rng)));
       const Vec nearest = x.cwiseMax(g.BoxMin()).cwiseMin(g.BoxMax());
       if (nearest == x) continue;
       ++outside;
@@ -172,7 +174,8 @@ TEST(BernsteinMeshContinuity, SplineBasisIsContinuousAcrossFacesButNotC2) {
         if (i != o) x += a[m++] / s * c[i];
       for (int i = 0; i < 4; ++i) centroid += c[i] / 4;
       const Vec outside = x + 1e-6 * (x - centroid);
-      if (((outside - g.BoxMin()).array() <= 0).any() || ((outside - g.BoxMax()).array() >= 0).any())
+      if (((outside - g.BoxMin()).array() <= 0).any() ||
+          ((outside - g.BoxMax()).array() >= 0).any())
         continue;  // a boundary face
       double tau[4];
       const long long u = g.Locate(outside.data(), tau);
@@ -220,8 +223,10 @@ long long SplineDimension(const BernsteinGrid& g, int k, int continuity) {
 
 // Test 2 of G-1: the spline-space dimensions of the table.
 TEST(BernsteinMeshContinuity, SplineSpaceDimensionsMatchTheTable) {
-  struct Row { int n, k, c0, c1; };
-  const Row table[] = {{1, 2, 27, 13}, {1, 3, 64, 34}, {1, 4, 125, 73}, {1, 5, 216, 136},
+  struct Row {
+    int n, k, c0, c1;
+  };
+  const Row table[] = {{1, 2, 27, 13},  {1, 3, 64, 34},  {1, 4, 125, 73},  {1, 5, 216, 136},
                        {2, 2, 125, 22}, {2, 3, 343, 88}, {2, 4, 729, 250}, {2, 5, 1331, 556}};
   for (const Row& r : table) {
     const BernsteinGrid g = Grid(r.n, r.n, r.n, 0.7);
@@ -288,8 +293,9 @@ TEST(BernsteinMeshContinuity, GlobalPolynomialsSatisfyTheRows) {
     Model m;
     m.AddBernsteinMesh(k, g, 1, b);
     for (int s = 0; s < 50; ++s) {
-      const Vec x = g.BoxMin() + (g.BoxMax() - g.BoxMin()).cwiseProduct(
-                                     Vec(0.5 + 0.5 * u(rng), 0.5 + 0.5 * u(rng), 0.5 + 0.5 * u(rng)));
+      const Vec x = g.BoxMin() + (g.BoxMax() - g.BoxMin())
+                                     .cwiseProduct(Vec(0.5 + 0.5 * u(rng), 0.5 + 0.5 * u(rng),
+                                                       0.5 + 0.5 * u(rng)));
       EXPECT_NEAR(m.Value(x), p(x), 1e-10 * scale);
     }
   }

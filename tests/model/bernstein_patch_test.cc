@@ -31,9 +31,9 @@ std::vector<double> RandomControlPoints(std::mt19937& rng, int k) {
 
 TEST(BernsteinPatch, ControlPointOrderIsDesignOrder) {
   // DESIGN.md, k = 2: 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
-  const std::vector<std::array<int, 4>> k2 = {{2, 0, 0, 0}, {1, 1, 0, 0}, {1, 0, 1, 0}, {1, 0, 0, 1},
-                                              {0, 2, 0, 0}, {0, 1, 1, 0}, {0, 1, 0, 1}, {0, 0, 2, 0},
-                                              {0, 0, 1, 1}, {0, 0, 0, 2}};
+  const std::vector<std::array<int, 4>> k2 = {
+      {2, 0, 0, 0}, {1, 1, 0, 0}, {1, 0, 1, 0}, {1, 0, 0, 1}, {0, 2, 0, 0},
+      {0, 1, 1, 0}, {0, 1, 0, 1}, {0, 0, 2, 0}, {0, 0, 1, 1}, {0, 0, 0, 2}};
   EXPECT_EQ(BernsteinMultiIndices(2), k2);
   for (int k = 0; k <= 7; ++k) {
     const auto order = oracle::DesignOrder(k);
@@ -88,7 +88,8 @@ TEST(BernsteinPatch, AgreesWithTheNaiveMultinomialSum) {
 }
 
 // Guo's Lemma 1 with the factor the derivation gives (the printed statement drops 1/k; §3 of
-// the paper has it): directional derivative from x_i towards x_j is k (b_{(k-1)e_i+e_j} - b_{k e_i}).
+// the paper has it): directional derivative from x_i towards x_j is k (b_{(k-1)e_i+e_j} - b_{k
+// e_i}).
 TEST(BernsteinPatch, Lemma1GradientAtAVertexFromItsNeighbours) {
   std::mt19937 rng(4);
   for (int k = 1; k <= 5; ++k) {
@@ -161,12 +162,14 @@ TEST(BernsteinPatch, GradientAndHessianAgreeWithCentralDifferences) {
         const double h = 1e-3;
         const double scale = 1.0 + hess.cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff();
         for (int a = 0; a < 3; ++a) {
-          const double ga = Richardson([&](double s) { return (at(a, s, a, 0) - at(a, -s, a, 0)) / (2 * s); }, h);
+          const double ga =
+              Richardson([&](double s) { return (at(a, s, a, 0) - at(a, -s, a, 0)) / (2 * s); }, h);
           EXPECT_NEAR(g[a], ga, 1e-7 * scale) << "k " << k;
           for (int d = 0; d < 3; ++d) {
             const double hd = Richardson(
                 [&](double s) {
-                  return (at(a, s, d, s) - at(a, s, d, -s) - at(a, -s, d, s) + at(a, -s, d, -s)) / (4 * s * s);
+                  return (at(a, s, d, s) - at(a, s, d, -s) - at(a, -s, d, s) + at(a, -s, d, -s)) /
+                         (4 * s * s);
                 },
                 h);
             EXPECT_NEAR(hess(a, d), hd, 1e-6 * scale) << "k " << k;
@@ -217,15 +220,19 @@ TEST(BernsteinPatch, RefusesFlatTetrahedra) {
   // Thin is fine; the test is relative, so scale does not matter.
   EXPECT_NO_THROW(Tetrahedron(a, b, c, Vec(0.2, 0.2, 1e-6)));
   EXPECT_NO_THROW(Tetrahedron(1e-6 * a, 1e-6 * b, 1e-6 * c, Vec(0, 0, 1e-6)));
-  EXPECT_NEAR(Tetrahedron(Vec(1, 1, 1), Vec(1, -1, -1), Vec(-1, 1, -1), Vec(-1, -1, 1)).relative_volume(),
-              1.0 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(
+      Tetrahedron(Vec(1, 1, 1), Vec(1, -1, -1), Vec(-1, 1, -1), Vec(-1, -1, 1)).relative_volume(),
+      1.0 / std::sqrt(2.0), 1e-12);
 }
 
 TEST(BernsteinPatch, ModelRefusesAWrongControlPointCountAndNamesParameters) {
   Model m;
-  EXPECT_THROW(m.AddBernsteinPatch(2, Tetrahedron(), std::vector<double>(9)), std::invalid_argument);
-  EXPECT_THROW(m.AddBernsteinPatch(0, Tetrahedron(), std::vector<double>(1)), std::invalid_argument);
-  EXPECT_THROW(m.AddPrimitive(NodeType::kBernsteinPatch, std::vector<double>(10)), std::invalid_argument);
+  EXPECT_THROW(m.AddBernsteinPatch(2, Tetrahedron(), std::vector<double>(9)),
+               std::invalid_argument);
+  EXPECT_THROW(m.AddBernsteinPatch(0, Tetrahedron(), std::vector<double>(1)),
+               std::invalid_argument);
+  EXPECT_THROW(m.AddPrimitive(NodeType::kBernsteinPatch, std::vector<double>(10)),
+               std::invalid_argument);
   m.AddBernsteinPatch(2, Tetrahedron(), std::vector<double>(10, 0.5), "cap");
   const std::vector<std::string> names = m.ParameterNames();
   ASSERT_EQ(names.size(), 10u);

@@ -19,7 +19,8 @@ Model Load(const std::string& root) {
 
 TEST(Blobs, OneGaussianBlobIsTheSphereOfRadiusSqrtLnAOverTOverB) {
   // a = e, b = 1, T = 1: the unit sphere.
-  const Model unit = Load(R"({"type": "blobs", "centers": [[1, 2, 3]], "weights": [2.718281828459045],
+  const Model unit =
+      Load(R"({"type": "blobs", "centers": [[1, 2, 3]], "weights": [2.718281828459045],
       "widths": [1], "threshold": 1, "kernel": "gaussian"})");
   std::mt19937 rng(2);
   std::normal_distribution<double> g;
@@ -71,7 +72,7 @@ TEST(Blobs, CompactKernelsHaveHalfWidthSpheresAndExactSupport) {
     m.AddBlobs(BlobKernel::kUnitStep, order, {0.5, 0, 0}, {2.0}, {1.6}, 1.0);
     EXPECT_NEAR(m.Value(Vec(0.5 + 0.8, 0, 0)), 0.0, 1e-14) << order;
     EXPECT_NEAR(m.Value(Vec(0.5, -0.8, 0)), 0.0, 1e-14) << order;
-    EXPECT_EQ(m.Value(Vec(0.5, 0, 1.6)), 1.0);  // beyond the support: f = T exactly
+    EXPECT_EQ(m.Value(Vec(0.5, 0, 1.6)), 1.0);               // beyond the support: f = T exactly
     EXPECT_NEAR(m.Value(Vec(0.5, 0, 0)), 1.0 - 2.0, 1e-15);  // centre: k = 1
   }
   // Wyvill: k(w/2) = 1 - 4/9/64 + 17/9/16 - 22/9/4 = 0.4398..; k(w) = 0 with zero slope.
@@ -89,13 +90,17 @@ TEST(Blobs, JsonFormOfTheNotesRoundTripsAndRefusesMismatchedLengths) {
   const Model back = ModelFromJson(ModelToJson(m));
   EXPECT_EQ(ModelToJson(back), ModelToJson(m));
   EXPECT_EQ(ModelToJson(m)["root"]["order"], 4);
-  for (const Vec& x : {Vec(0.3, 0.2, 0.1), Vec(0.9, -0.4, 0.2)}) EXPECT_EQ(back.Value(x), m.Value(x));
+  for (const Vec& x : {Vec(0.3, 0.2, 0.1), Vec(0.9, -0.4, 0.2)})
+    EXPECT_EQ(back.Value(x), m.Value(x));
   EXPECT_THROW(Load(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2, 1], "widths": [1],
-      "threshold": 1, "kernel": "gaussian"})"), ModelFormatError);
+      "threshold": 1, "kernel": "gaussian"})"),
+               ModelFormatError);
   EXPECT_THROW(Load(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2], "widths": [0],
-      "threshold": 1, "kernel": "gaussian"})"), ModelFormatError);
+      "threshold": 1, "kernel": "gaussian"})"),
+               ModelFormatError);
   EXPECT_THROW(Load(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2], "widths": [1],
-      "threshold": 1, "kernel": "metaball"})"), ModelFormatError);
+      "threshold": 1, "kernel": "metaball"})"),
+               ModelFormatError);
 }
 
 }  // namespace

@@ -22,9 +22,9 @@ Model AxisBox(const Vec& c, const Vec& h) {
 
 TEST(Box, DistancesToFacesEdgesAndCornersInClosedForm) {
   const Model m = AxisBox(Vec(1, 2, 3), Vec(0.5, 1.0, 2.0));
-  EXPECT_DOUBLE_EQ(m.Value(Vec(1, 2, 3)), -0.5);                 // centre: nearest face x
+  EXPECT_DOUBLE_EQ(m.Value(Vec(1, 2, 3)), -0.5);  // centre: nearest face x
   EXPECT_DOUBLE_EQ(m.Value(Vec(1.3, 2, 3)), -0.2);
-  EXPECT_DOUBLE_EQ(m.Value(Vec(1 + 0.5 + 0.25, 2, 3)), 0.25);    // off the +x face
+  EXPECT_DOUBLE_EQ(m.Value(Vec(1 + 0.5 + 0.25, 2, 3)), 0.25);  // off the +x face
   // Beyond the (+x, +y) edge: distance sqrt(a^2 + b^2).
   EXPECT_NEAR(m.Value(Vec(1.5 + 0.3, 3.0 + 0.4, 3.7)), 0.5, 1e-15);
   // Beyond the (+x, -y, -z) corner: |(0.1, 0.2, 0.2)| = 0.3.
@@ -50,8 +50,10 @@ TEST(Box, RefusesBadFieldsNamingThePath) {
     return ModelFromJson(nlohmann::json::parse(
         R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}"));
   };
-  EXPECT_THROW(load(R"({"type": "box", "center": [0,0,0], "axes": [[1,0,0],[1,1,0]], "half_sizes": [1,1,1]})"),
-               ModelFormatError);
+  EXPECT_THROW(
+      load(
+          R"({"type": "box", "center": [0,0,0], "axes": [[1,0,0],[1,1,0]], "half_sizes": [1,1,1]})"),
+      ModelFormatError);
   try {
     load(R"({"type": "box", "center": [0,0,0], "axes": [[1,0,0],[0,1,0]], "half_sizes": [1,0,1]})");
     FAIL();
@@ -61,16 +63,19 @@ TEST(Box, RefusesBadFieldsNamingThePath) {
 }
 
 TEST(Box, EqualsTheSharpIntersectionOfItsFacePlanesInsideAndBoundsItOutside) {
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Vec(0.2, -1, 0.4).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(0.7, Vec(0.2, -1, 0.4).normalized()).toRotationMatrix();
   const Eigen::Quaterniond q(r);
   const Vec c(0.1, 0.2, -0.3), h(0.8, 0.5, 1.1);
   Model box, planes;
-  box.AddPrimitive(NodeType::kBox, {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(), h.x(), h.y(), h.z()});
+  box.AddPrimitive(NodeType::kBox,
+                   {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(), h.x(), h.y(), h.z()});
   std::vector<int> faces;
   for (int i = 0; i < 3; ++i)
     for (double s : {-1.0, 1.0}) {
       const Vec n = s * r.col(i);
-      faces.push_back(planes.AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), n.dot(c) + h[i]}));
+      faces.push_back(
+          planes.AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), n.dot(c) + h[i]}));
     }
   planes.AddOperator(NodeType::kIntersection, faces, 1.0, 1.0, 0);
   std::mt19937 rng(7);
@@ -104,7 +109,8 @@ TEST(Complement, IsMinusTheChildBitForBitAndSwapsInsideAndOutside) {
   EXPECT_EQ(back.nodes()[back.root()].type, NodeType::kComplement);
   EXPECT_EQ(back.Value(Vec(0.3, 2, 0.1)), m.Value(Vec(0.3, 2, 0.1)));
   EXPECT_THROW(ModelFromJson(nlohmann::json::parse(R"({"format": "implicitfit-model", "version": 1,
-      "root": {"type": "complement", "children": []}})")), ModelFormatError);
+      "root": {"type": "complement", "children": []}})")),
+               ModelFormatError);
 }
 
 }  // namespace

@@ -2,8 +2,6 @@
 // "smoothing": "convex" blend option. Expected values: closed forms (S^c(0) = 13w/48 for n = 3,
 // w/2 for n = 1), Simpson quadrature of H_n (model/unit_step.h, not the integrated pieces),
 // finite differences, |t| outside the band.
-#include "model/convex_smooth_ops.h"
-
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "model/convex_smooth_ops.h"
 #include "model/model.h"
 #include "model/model_json.h"
 
@@ -83,9 +82,12 @@ TEST(ConvexSmoothMax, JetsAgreeWithCentralDifferences) {
       const double x = u(rng), y = u(rng), w = 0.3 + 0.5 * (u(rng) + 1);
       const J m = ConvexSmoothMax(J(x, 0), J(y, 1), J(w, 2), n);
       const double e = 1e-6;
-      const double dx = (ConvexSmoothMax(x + e, y, w, n) - ConvexSmoothMax(x - e, y, w, n)) / (2 * e);
-      const double dy = (ConvexSmoothMax(x, y + e, w, n) - ConvexSmoothMax(x, y - e, w, n)) / (2 * e);
-      const double dw = (ConvexSmoothMax(x, y, w + e, n) - ConvexSmoothMax(x, y, w - e, n)) / (2 * e);
+      const double dx =
+          (ConvexSmoothMax(x + e, y, w, n) - ConvexSmoothMax(x - e, y, w, n)) / (2 * e);
+      const double dy =
+          (ConvexSmoothMax(x, y + e, w, n) - ConvexSmoothMax(x, y - e, w, n)) / (2 * e);
+      const double dw =
+          (ConvexSmoothMax(x, y, w + e, n) - ConvexSmoothMax(x, y, w - e, n)) / (2 * e);
       EXPECT_NEAR(m.a, ConvexSmoothMax(x, y, w, n), 1e-15);
       EXPECT_NEAR(m.v[0], dx, 1e-7);
       EXPECT_NEAR(m.v[1], dy, 1e-7);
@@ -114,7 +116,7 @@ TEST(ConvexSmoothing, TreeNodesEvaluateTheConvexOperators) {
     for (int i = 0; i < 100; ++i) {
       const Eigen::Vector3d x(u(rng), u(rng), u(rng));
       const double a = x.x(), b = (x - Eigen::Vector3d(0.2, 0, 0)).norm() - 0.5;
-      const double expected = type == NodeType::kUnion ? -ConvexSmoothMax(-a, -b, 0.25, 3)
+      const double expected = type == NodeType::kUnion          ? -ConvexSmoothMax(-a, -b, 0.25, 3)
                               : type == NodeType::kIntersection ? ConvexSmoothMax(a, b, 0.25, 3)
                                                                 : ConvexSmoothMax(a, -b, 0.25, 3);
       EXPECT_DOUBLE_EQ(m.Value(x), expected);

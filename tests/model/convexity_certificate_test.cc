@@ -27,8 +27,8 @@ Tetrahedron RandomTetrahedron(std::mt19937& rng, Eigen::Matrix3d* edges) {
 TEST(ConvexityCertificate, QuadricsGetTheVerdictOfTheirMatrixOnEveryTetrahedron) {
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.1, 2.0);
-  const Vec spectra[] = {Vec(1, 2, 3), Vec(0.1, 0.5, 4), Vec(-1, 2, 3), Vec(1, -0.2, 3),
-                         Vec(-1, -2, -3), Vec(0, 1, 2), Vec(2, 2, 2)};
+  const Vec spectra[] = {Vec(1, 2, 3),    Vec(0.1, 0.5, 4), Vec(-1, 2, 3), Vec(1, -0.2, 3),
+                         Vec(-1, -2, -3), Vec(0, 1, 2),     Vec(2, 2, 2)};
   const bool convex[] = {true, true, false, false, false, false, true};
   for (int s = 0; s < 7; ++s)
     for (int trial = 0; trial < 10; ++trial) {
@@ -38,8 +38,8 @@ TEST(ConvexityCertificate, QuadricsGetTheVerdictOfTheirMatrixOnEveryTetrahedron)
       q.A = testsupport::RandomSymmetric(rng, spectra[s]);
       q.b = Vec(u(rng), u(rng), u(rng));
       q.c = u(rng);
-      const double base = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(e.transpose() * q.A * e)
-                              .eigenvalues()(0);
+      const double base =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(e.transpose() * q.A * e).eigenvalues()(0);
       for (int k = 2; k <= 4; ++k) {
         const std::vector<double> b = QuadricToBernstein(q, tet, k);
         const ConvexityCertificate cert = CertifyConvexity(k, b.data());
@@ -103,7 +103,8 @@ TEST(ConvexityCertificate, ExtremeMagnitudesNeitherOverflowNorUnderflow) {
       for (double& x : s) x *= scale;
       const ConvexityCertificate c = CertifyConvexity(3, s.data());
       EXPECT_EQ(c.convex, base.convex) << scale;
-      EXPECT_NEAR(c.min_eigenvalue / scale, base.min_eigenvalue, 1e-12 * std::abs(base.min_eigenvalue) + 1e-14)
+      EXPECT_NEAR(c.min_eigenvalue / scale, base.min_eigenvalue,
+                  1e-12 * std::abs(base.min_eigenvalue) + 1e-14)
           << scale;
     }
   }

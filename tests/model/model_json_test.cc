@@ -9,7 +9,9 @@ namespace {
 
 using nlohmann::json;
 
-json Doc(const json& root) { return {{"format", "implicitfit-model"}, {"version", 1}, {"root", root}}; }
+json Doc(const json& root) {
+  return {{"format", "implicitfit-model"}, {"version", 1}, {"root", root}};
+}
 
 const char* kEveryType = R"({
   "format": "implicitfit-model", "version": 1,
@@ -68,40 +70,65 @@ void ExpectRefused(const json& document, const std::string& fragment) {
 
 TEST(ModelJson, RefusesInvalidDocumentsNamingTheField) {
   ExpectRefused(json::parse(R"({"format": "x", "version": 1, "root": {}})"), "format");
-  ExpectRefused(json::parse(R"({"format": "implicitfit-model", "version": 2, "root": {}})"), "version");
+  ExpectRefused(json::parse(R"({"format": "implicitfit-model", "version": 2, "root": {}})"),
+                "version");
   ExpectRefused(json::parse(R"({"format": "implicitfit-model", "version": 1})"), "root: missing");
-  ExpectRefused(json::parse(R"({"format": "implicitfit-model", "version": 1, "root": {}, "extra": 1})"),
-                "extra: unknown top-level field");
+  ExpectRefused(
+      json::parse(R"({"format": "implicitfit-model", "version": 1, "root": {}, "extra": 1})"),
+      "extra: unknown top-level field");
   ExpectRefused(Doc({{"type", "blob"}}), "unknown node type 'blob'");
-  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", -1}}), "root.radius: must be > 0");
-  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0}}, {"radius", 1}}), "root.center: must be an array of 3");
+  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", -1}}),
+                "root.radius: must be > 0");
+  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0}}, {"radius", 1}}),
+                "root.center: must be an array of 3");
   ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"colour", "red"}}),
                 "root.colour: unknown field");
   ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, 0}}}), "root.radius: missing");
-  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, "a"}}, {"radius", 1}}), "root.center[2]");
-  ExpectRefused(Doc({{"type", "plane"}, {"normal", {0, 0, 0}}, {"offset", 1}}), "root.normal: must be a non-zero");
-  ExpectRefused(Doc({{"type", "cone"}, {"apex", {0, 0, 0}}, {"axis", {0, 0, 1}}, {"half_angle", 1.6}}),
-                "root.half_angle");
-  ExpectRefused(Doc({{"type", "ellipsoid"}, {"center", {0, 0, 0}}, {"radii", {1, 1, 1}},
+  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, "a"}}, {"radius", 1}}),
+                "root.center[2]");
+  ExpectRefused(Doc({{"type", "plane"}, {"normal", {0, 0, 0}}, {"offset", 1}}),
+                "root.normal: must be a non-zero");
+  ExpectRefused(
+      Doc({{"type", "cone"}, {"apex", {0, 0, 0}}, {"axis", {0, 0, 1}}, {"half_angle", 1.6}}),
+      "root.half_angle");
+  ExpectRefused(Doc({{"type", "ellipsoid"},
+                     {"center", {0, 0, 0}},
+                     {"radii", {1, 1, 1}},
                      {"axes", {{1, 0, 0}, {1, 1, 0}}}}),
                 "orthogonal");
-  ExpectRefused(Doc({{"type", "quadric"}, {"coefficients", std::vector<double>(10, 0.0)}}), "all be zero");
-  ExpectRefused(Doc({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"fixed", {"radiu"}}}),
-                "'radiu' is not a parameter");
+  ExpectRefused(Doc({{"type", "quadric"}, {"coefficients", std::vector<double>(10, 0.0)}}),
+                "all be zero");
+  ExpectRefused(
+      Doc({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"fixed", {"radiu"}}}),
+      "'radiu' is not a parameter");
   const json s = {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}};
-  ExpectRefused(Doc({{"type", "union"}, {"children", {s, s}}, {"delta", 0.1}, {"epsilon", 0.2}, {"order", 2}}),
+  ExpectRefused(Doc({{"type", "union"},
+                     {"children", {s, s}},
+                     {"delta", 0.1},
+                     {"epsilon", 0.2},
+                     {"order", 2}}),
                 "root.epsilon: must not exceed delta");
-  ExpectRefused(Doc({{"type", "union"}, {"children", {s}}, {"delta", 0.1}, {"epsilon", 0.1}, {"order", 2}}),
-                "root.children: must be an array of at least 2");
-  ExpectRefused(Doc({{"type", "union"}, {"children", {s, s}}, {"delta", 0.1}, {"epsilon", 0.1}, {"order", 2.5}}),
+  ExpectRefused(
+      Doc({{"type", "union"}, {"children", {s}}, {"delta", 0.1}, {"epsilon", 0.1}, {"order", 2}}),
+      "root.children: must be an array of at least 2");
+  ExpectRefused(Doc({{"type", "union"},
+                     {"children", {s, s}},
+                     {"delta", 0.1},
+                     {"epsilon", 0.1},
+                     {"order", 2.5}}),
                 "root.order");
-  ExpectRefused(Doc({{"type", "union"}, {"children", {s, {{"type", "sphere"}}}}, {"delta", 0.1},
-                     {"epsilon", 0.1}, {"order", 2}}),
+  ExpectRefused(Doc({{"type", "union"},
+                     {"children", {s, {{"type", "sphere"}}}},
+                     {"delta", 0.1},
+                     {"epsilon", 0.1},
+                     {"order", 2}}),
                 "root.children[1].center: missing");
 }
 
 TEST(ModelJson, EllipsoidWritesAThirdAxisThatIsTheCrossProduct) {
-  const Model m = ModelFromJson(Doc({{"type", "ellipsoid"}, {"center", {0, 0, 0}}, {"radii", {1, 2, 3}},
+  const Model m = ModelFromJson(Doc({{"type", "ellipsoid"},
+                                     {"center", {0, 0, 0}},
+                                     {"radii", {1, 2, 3}},
                                      {"axes", {{0, 1, 0}, {0, 0, 1}}}}));
   const json out = ModelToJson(m);
   EXPECT_EQ(out["root"]["axes"][2], json::array({1.0, 0.0, 0.0}));

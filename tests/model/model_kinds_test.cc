@@ -136,7 +136,8 @@ class KindProperties : public ::testing::Test {
   std::mt19937 rng_{4321};
 };
 
-using Kinds = ::testing::Types<BoxKind, ParaboloidKind, GaussianBlobKind, StepBlobKind, CapsuleKind>;
+using Kinds =
+    ::testing::Types<BoxKind, ParaboloidKind, GaussianBlobKind, StepBlobKind, CapsuleKind>;
 TYPED_TEST_SUITE(KindProperties, Kinds);
 
 TYPED_TEST(KindProperties, SampledSurfacePointsAreOnTheZeroSet) {
@@ -204,7 +205,8 @@ TYPED_TEST(KindProperties, JsonRoundTripKeepsTheFunction) {
   std::uniform_real_distribution<double> u(-3, 3);
   for (int i = 0; i < 200; ++i) {
     const Vec x(u(this->rng_), u(this->rng_), u(this->rng_));
-    EXPECT_NEAR(back.Value(x), this->model_.Value(x), 1e-13 * (1.0 + std::abs(this->model_.Value(x))));
+    EXPECT_NEAR(back.Value(x), this->model_.Value(x),
+                1e-13 * (1.0 + std::abs(this->model_.Value(x))));
   }
 }
 

@@ -45,7 +45,8 @@ TEST(Model, MoreThanTwoChildrenFoldLeftToRight) {
   const double ca[3] = {0, 0, 0}, cb[3] = {1, 0, 0}, n[3] = {0, 0, 1};
   for (const Vec& p : {Vec(-0.5, 0.1, 0.1), Vec(0.2, 0.3, 0.5), Vec(0.4, -0.2, -0.3)}) {
     const double x[3] = {p.x(), p.y(), p.z()};
-    const double ab = oracle::Difference(oracle::Sphere(ca, 1, x), oracle::Sphere(cb, 1, x), 0.3, 0.2, 2);
+    const double ab =
+        oracle::Difference(oracle::Sphere(ca, 1, x), oracle::Sphere(cb, 1, x), 0.3, 0.2, 2);
     EXPECT_NEAR(m.Value(p), oracle::Difference(ab, oracle::Plane(n, 0.2, x), 0.3, 0.2, 2), 1e-13);
   }
 }
@@ -88,7 +89,8 @@ TEST(Model, JetDerivativesInDeltaAndEpsilonAgreeWithNumeric) {
   int probed_in_blend = 0;
   for (int i = 0; i < 100; ++i) {
     const Vec x(0.75 + u(rng), u(rng) * 3, u(rng) * 3);
-    const auto report = testsupport::CompareWithCentralDifferences(cost, {m.parameters(), {x.x(), x.y(), x.z()}});
+    const auto report =
+        testsupport::CompareWithCentralDifferences(cost, {m.parameters(), {x.x(), x.y(), x.z()}});
     EXPECT_LT(report.worst_error, 1e-6) << report.detail;
     // Inside the blend zone f depends on delta: count such probes.
     Model moved = m;

@@ -37,7 +37,8 @@ TEST(Morph, EndValuesReproduceTheChildrenBitForBit) {
 }
 
 TEST(Morph, JsonFormOfTheNotesRoundTripsAndRefusesTOutsideTheUnitInterval) {
-  const std::string head = R"({"format": "implicitfit-model", "version": 1, "root": {"type": "morph",
+  const std::string head =
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "morph",
       "children": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
                    {"type": "sphere", "center": [0, 0, 0], "radius": 2}], "t": )";
   const Model m = ModelFromJson(nlohmann::json::parse(head + "0.25}}"));
@@ -52,7 +53,8 @@ TEST(Morph, JsonFormOfTheNotesRoundTripsAndRefusesTOutsideTheUnitInterval) {
   }
   EXPECT_THROW(ModelFromJson(nlohmann::json::parse(R"({"format": "implicitfit-model", "version": 1,
       "root": {"type": "morph", "children": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}],
-      "t": 0.5}})")), ModelFormatError);
+      "t": 0.5}})")),
+               ModelFormatError);
 }
 
 }  // namespace

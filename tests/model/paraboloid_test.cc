@@ -21,7 +21,8 @@ TEST(Paraboloid, ZeroCurvatureIsThePlaneBitForBit) {
   const Vec p(0.3, -1.2, 0.7), a(0.48, -0.6, 0.64);
   Model paraboloid, plane;
   paraboloid.AddPrimitive(NodeType::kParaboloid, {p.x(), p.y(), p.z(), a.x(), a.y(), a.z(), 0.0});
-  plane.AddPrimitive(NodeType::kPlane, {a.x(), a.y(), a.z(), a.x() * p.x() + a.y() * p.y() + a.z() * p.z()});
+  plane.AddPrimitive(NodeType::kPlane,
+                     {a.x(), a.y(), a.z(), a.x() * p.x() + a.y() * p.y() + a.z() * p.z()});
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-5, 5);
   for (int i = 0; i < 1000; ++i) {
@@ -32,7 +33,8 @@ TEST(Paraboloid, ZeroCurvatureIsThePlaneBitForBit) {
 
 TEST(Paraboloid, ValuesInClosedFormAndTheSignOfTheCurvature) {
   // Vertex at the origin, axis +z, kappa = 2: f = z + x^2 + y^2.
-  const Model convex = Load(R"({"type": "paraboloid", "vertex": [0, 0, 0], "axis": [0, 0, 3], "curvature": 2})");
+  const Model convex =
+      Load(R"({"type": "paraboloid", "vertex": [0, 0, 0], "axis": [0, 0, 3], "curvature": 2})");
   EXPECT_DOUBLE_EQ(convex.Value(Vec(1, 2, -1)), -1.0 + 5.0);
   EXPECT_DOUBLE_EQ(convex.Value(Vec(0, 0, -0.5)), -0.5);
   EXPECT_NEAR((convex.Gradient(Vec::Zero()) - Vec(0, 0, 1)).norm(), 0.0, 1e-15);
@@ -42,7 +44,8 @@ TEST(Paraboloid, ValuesInClosedFormAndTheSignOfTheCurvature) {
   EXPECT_LT(convex.Value(a), 0.0);
   EXPECT_LT(convex.Value(b), 0.0);
   EXPECT_LT(convex.Value((a + b) / 2), 0.0);
-  const Model concave = Load(R"({"type": "paraboloid", "vertex": [0, 0, 0], "axis": [0, 0, 1], "curvature": -2})");
+  const Model concave =
+      Load(R"({"type": "paraboloid", "vertex": [0, 0, 0], "axis": [0, 0, 1], "curvature": -2})");
   const Vec c(-1, 0, 0.95), d(1, 0, 0.95);
   EXPECT_LT(concave.Value(c), 0.0);
   EXPECT_LT(concave.Value(d), 0.0);
@@ -58,8 +61,9 @@ TEST(PlaneByPointAndNormal, IsTheSignedDistanceAndIsWrittenAsNormalAndOffset) {
   EXPECT_FALSE(out.contains("point"));
   EXPECT_THROW(Load(R"({"type": "plane", "point": [1, 2, 3], "normal": [0, 0, 1], "offset": 3})"),
                ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "paraboloid", "vertex": [0, 0, 0], "axis": [0, 0, 0], "curvature": 1})"),
-               ModelFormatError);
+  EXPECT_THROW(
+      Load(R"({"type": "paraboloid", "vertex": [0, 0, 0], "axis": [0, 0, 0], "curvature": 1})"),
+      ModelFormatError);
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ Model Grid(double epsilon, int order) {
   Model m;
   std::vector<int> children;
   for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 3; ++i) children.push_back(m.AddPrimitive(NodeType::kPlane, {0, 0, 1, 0.1 * i + 0.3 * j}));
+    for (int i = 0; i < 3; ++i)
+      children.push_back(m.AddPrimitive(NodeType::kPlane, {0, 0, 1, 0.1 * i + 0.3 * j}));
   m.AddPartition(kCuts, epsilon, order, children);
   return m;
 }
@@ -49,7 +50,8 @@ TEST(Partition, BasesAreAPartitionOfUnityBetweenZeroAndOne) {
   // Through the model: every child the same plane gives that plane (sum of bases = 1).
   Model same;
   std::vector<int> children;
-  for (int c = 0; c < 6; ++c) children.push_back(same.AddPrimitive(NodeType::kPlane, {0, 0, 1, 0.25}));
+  for (int c = 0; c < 6; ++c)
+    children.push_back(same.AddPrimitive(NodeType::kPlane, {0, 0, 1, 0.25}));
   same.AddPartition(kCuts, 0.3, 3, children);
   for (int n = 0; n < 10000; ++n) {
     const Vec x(u(rng), u(rng), u(rng));
@@ -59,7 +61,8 @@ TEST(Partition, BasesAreAPartitionOfUnityBetweenZeroAndOne) {
 
 TEST(Partition, RefusesACellNarrowerThanTwoEpsilonWithPathAndWidth) {
   // Cells of width 0.9 with epsilon 0.3 (1.5 eps): refused, naming root.cuts[0][1] and 0.9.
-  const std::string doc = R"({"format": "implicitfit-model", "version": 1, "root": {"type": "partition",
+  const std::string doc =
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "partition",
       "cuts": [[-0.5, 0.4], [], []], "epsilon": EPS, "order": 3, "children": [
       {"type": "plane", "normal": [0, 0, 1], "offset": 0}, {"type": "plane", "normal": [0, 0, 1], "offset": 0},
       {"type": "plane", "normal": [0, 0, 1], "offset": 0}]}})";
@@ -88,7 +91,8 @@ TEST(Partition, EqualsTheCellsChildExactlyAwayFromTheCuts) {
   int checked = 0;
   for (int n = 0; n < 5000; ++n) {
     const Vec x(u(rng), u(rng), u(rng));
-    if (std::abs(x.x() + 0.5) <= eps || std::abs(x.x() - 0.4) <= eps || std::abs(x.y()) <= eps) continue;
+    if (std::abs(x.x() + 0.5) <= eps || std::abs(x.x() - 0.4) <= eps || std::abs(x.y()) <= eps)
+      continue;
     const int i = x.x() < -0.5 ? 0 : (x.x() < 0.4 ? 1 : 2), j = x.y() < 0 ? 0 : 1;
     EXPECT_EQ(m.Value(x), x.z() - (0.1 * i + 0.3 * j));
     ++checked;

@@ -46,7 +46,8 @@ std::vector<double> Interpolate(int k, const Corners& c, G g) {
   return std::vector<double>(b.data(), b.data() + n);
 }
 
-// Relabel: new vertex i is old vertex perm[i]; b'_lambda' = b_lambda with lambda'_i = lambda_perm[i].
+// Relabel: new vertex i is old vertex perm[i]; b'_lambda' = b_lambda with lambda'_i =
+// lambda_perm[i].
 std::vector<double> Relabel(int k, const std::vector<double>& b, const std::array<int, 4>& perm) {
   const std::vector<oracle::MultiIndex> l = oracle::DesignOrder(k);
   std::vector<double> out(b.size());
@@ -70,7 +71,8 @@ TEST(CartesianMargin, MatchesLonghandMatricesAndIsInvariantUnderAll24Relabelling
       double expected = INFINITY;
       for (const Eigen::Matrix3d& a : oracle::GuoMatrices(k, b)) {
         const Eigen::Matrix3d cm = e.inverse().transpose() * a * e.inverse();
-        expected = std::min(expected, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cm).eigenvalues()[0]);
+        expected =
+            std::min(expected, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cm).eigenvalues()[0]);
       }
       const CartesianMargin m0 = CartesianConvexityMargin(k, Tet(c), b.data());
       EXPECT_NEAR(m0.min_eigenvalue_cartesian, expected, 1e-10 * (1 + std::abs(expected)));

@@ -175,7 +175,8 @@ TYPED_TEST(PrimitiveProperties, ValueAlongTheNormalIsTheOffset) {
 }
 
 TYPED_TEST(PrimitiveProperties, TrueDistancesHaveUnitGradientEverywhere) {
-  if (!TypeParam::kTrueDistance) GTEST_SKIP() << "first-order distance: |grad f| = 1 on the surface only";
+  if (!TypeParam::kTrueDistance)
+    GTEST_SKIP() << "first-order distance: |grad f| = 1 on the surface only";
   std::uniform_real_distribution<double> u(-4, 4);
   for (int i = 0; i < 300; ++i) {
     const Vec x(u(this->rng_), u(this->rng_), u(this->rng_));
@@ -196,12 +197,12 @@ struct ValueCost {
 };
 
 TYPED_TEST(PrimitiveProperties, JetDerivativesAgreeWithNumericDifferentiation) {
-  constexpr int kParams = static_cast<int>(
-      TypeParam::kType == NodeType::kPlane ? 4 :
-      TypeParam::kType == NodeType::kSphere ? 4 :
-      TypeParam::kType == NodeType::kTorus ? 8 :
-      TypeParam::kType == NodeType::kEllipsoid ? 12 :
-      TypeParam::kType == NodeType::kQuadric ? 10 : 7);
+  constexpr int kParams = static_cast<int>(TypeParam::kType == NodeType::kPlane       ? 4
+                                           : TypeParam::kType == NodeType::kSphere    ? 4
+                                           : TypeParam::kType == NodeType::kTorus     ? 8
+                                           : TypeParam::kType == NodeType::kEllipsoid ? 12
+                                           : TypeParam::kType == NodeType::kQuadric   ? 10
+                                                                                      : 7);
   ASSERT_EQ(kParams, NumParametersOf(TypeParam::kType));
   ceres::AutoDiffCostFunction<ValueCost<TypeParam>, 1, kParams, 3> cost(
       new ValueCost<TypeParam>{&this->model_});

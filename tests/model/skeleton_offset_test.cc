@@ -20,7 +20,8 @@ Model Load(const std::string& root) {
 TEST(SkeletonOffset, SinglePointIsTheSphereBitForBit) {
   Model sphere;
   sphere.AddPrimitive(NodeType::kSphere, {0.3, -0.7, 1.1, 0.9});
-  const Model point = Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0.3, -0.7, 1.1]]}, "radius": 0.9})");
+  const Model point = Load(
+      R"({"type": "skeleton_offset", "skeleton": {"points": [[0.3, -0.7, 1.1]]}, "radius": 0.9})");
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> u(-3, 3);
   for (int i = 0; i < 1000; ++i) {
@@ -32,16 +33,19 @@ TEST(SkeletonOffset, SinglePointIsTheSphereBitForBit) {
 
 TEST(SkeletonOffset, CapsuleDistancesInClosedForm) {
   // Segment from (0,0,0) to (0,0,2), radius 0.5.
-  const Model m = Load(R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [0, 0, 2]]]}, "radius": 0.5})");
-  EXPECT_DOUBLE_EQ(m.Value(Vec(3, 4, 1)), 5.0 - 0.5);     // beside the segment: radial distance
-  EXPECT_DOUBLE_EQ(m.Value(Vec(0, 0, 3)), 1.0 - 0.5);     // beyond the end cap
-  EXPECT_DOUBLE_EQ(m.Value(Vec(0, 3, -4)), 5.0 - 0.5);    // below the start: distance to (0,0,0)
-  EXPECT_DOUBLE_EQ(m.Value(Vec(0, 0.1, 1)), 0.1 - 0.5);   // inside
+  const Model m = Load(
+      R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [0, 0, 2]]]}, "radius": 0.5})");
+  EXPECT_DOUBLE_EQ(m.Value(Vec(3, 4, 1)), 5.0 - 0.5);    // beside the segment: radial distance
+  EXPECT_DOUBLE_EQ(m.Value(Vec(0, 0, 3)), 1.0 - 0.5);    // beyond the end cap
+  EXPECT_DOUBLE_EQ(m.Value(Vec(0, 3, -4)), 5.0 - 0.5);   // below the start: distance to (0,0,0)
+  EXPECT_DOUBLE_EQ(m.Value(Vec(0, 0.1, 1)), 0.1 - 0.5);  // inside
 }
 
 TEST(SkeletonOffset, PolylineIsTheUnionOfItsSegmentCapsules) {
-  const Model poly = Load(R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]}, "radius": 0.2})");
-  const Model segs = Load(R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [1, 0, 0]],
+  const Model poly = Load(
+      R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]}, "radius": 0.2})");
+  const Model segs =
+      Load(R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [1, 0, 0]],
       [[1, 0, 0], [1, 1, 0]], [[1, 1, 0], [1, 1, 1]]]}, "radius": 0.2})");
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-1, 2);
@@ -52,7 +56,8 @@ TEST(SkeletonOffset, PolylineIsTheUnionOfItsSegmentCapsules) {
     double best = 1e300;
     const Vec v[4] = {Vec(0, 0, 0), Vec(1, 0, 0), Vec(1, 1, 0), Vec(1, 1, 1)};
     for (int s = 0; s < 3; ++s)
-      for (int k = 0; k <= 1000; ++k) best = std::min(best, (x - (v[s] + (v[s + 1] - v[s]) * (k / 1000.0))).norm());
+      for (int k = 0; k <= 1000; ++k)
+        best = std::min(best, (x - (v[s] + (v[s + 1] - v[s]) * (k / 1000.0))).norm());
     EXPECT_LE(poly.Value(x), best - 0.2 + 1e-15);
     EXPECT_GE(poly.Value(x), best - 0.2 - 1e-3);
   }
@@ -61,14 +66,22 @@ TEST(SkeletonOffset, PolylineIsTheUnionOfItsSegmentCapsules) {
 }
 
 TEST(SkeletonOffset, RefusesEmptyOrAmbiguousSkeletons) {
-  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"points": []}, "radius": 1})"), ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0]]}, "radius": 1})"),
+  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"points": []}, "radius": 1})"),
                ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]], "polyline": [[0, 0, 0], [1, 0, 0]]}, "radius": 1})"),
-               ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]]}, "radius": -1})"), ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}, "radius": 1})"),
-               ModelFormatError);
+  EXPECT_THROW(
+      Load(R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0]]}, "radius": 1})"),
+      ModelFormatError);
+  EXPECT_THROW(
+      Load(
+          R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]], "polyline": [[0, 0, 0], [1, 0, 0]]}, "radius": 1})"),
+      ModelFormatError);
+  EXPECT_THROW(
+      Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]]}, "radius": -1})"),
+      ModelFormatError);
+  EXPECT_THROW(
+      Load(
+          R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}, "radius": 1})"),
+      ModelFormatError);
 }
 
 }  // namespace

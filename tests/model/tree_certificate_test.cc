@@ -30,8 +30,10 @@ TEST(TreeCertificate, LeavesGetTheirClasses) {
   EXPECT_EQ(single(NodeType::kEllipsoid, {0, 0, 0, 1, 0.7, 0.5, 1, 0, 0, 0, 1, 0}),
             TreeConvexity::kConvexSolid);
   // Quadric x^2 + 2 y^2 + z^2 - 1 (A >= 0) and the hyperboloid x^2 + y^2 - z^2 - 1.
-  EXPECT_EQ(single(NodeType::kQuadric, {1, 2, 1, 0, 0, 0, 0, 0, 0, -1}), TreeConvexity::kConvexSolid);
-  EXPECT_EQ(single(NodeType::kQuadric, {1, 1, -1, 0, 0, 0, 0, 0, 0, -1}), TreeConvexity::kNotCertified);
+  EXPECT_EQ(single(NodeType::kQuadric, {1, 2, 1, 0, 0, 0, 0, 0, 0, -1}),
+            TreeConvexity::kConvexSolid);
+  EXPECT_EQ(single(NodeType::kQuadric, {1, 1, -1, 0, 0, 0, 0, 0, 0, -1}),
+            TreeConvexity::kNotCertified);
 }
 
 TEST(TreeCertificate, PatchesAreConvexOnTheirTetrahedronOnly) {
@@ -91,7 +93,8 @@ TEST(TreeCertificate, ConvexSmoothingIntersectionOfFourPlanesAndASphereIsCertifi
   EXPECT_EQ(RootClass(m), TreeConvexity::kConvexFunction);
   TangentPlaneTestOptions o;
   o.segments = 10000;
-  const TangentPlaneTestResult s = TangentPlaneTest(m, Vec(-1.2, -1.2, -1.2), Vec(1.2, 1.2, 1.2), o);
+  const TangentPlaneTestResult s =
+      TangentPlaneTest(m, Vec(-1.2, -1.2, -1.2), Vec(1.2, 1.2, 1.2), o);
   EXPECT_GT(s.zero_points, 1000);
   EXPECT_EQ(s.violations, 0) << s.worst_excursion;
   // Li-Phillips smoothing, a union, a difference: not certified.
@@ -124,8 +127,10 @@ int RandomConvexNode(std::mt19937& rng, Model* m, int depth) {
     const int kind = static_cast<int>(r01(rng) * 6);
     const Vec c = 0.3 * Vec(u(rng), u(rng), u(rng)), a = dir();
     switch (kind) {
-      case 0: return m->AddPrimitive(NodeType::kPlane, {a.x(), a.y(), a.z(), 0.3 + 0.5 * r01(rng)});
-      case 1: return m->AddPrimitive(NodeType::kSphere, {c.x(), c.y(), c.z(), 0.6 + 0.5 * r01(rng)});
+      case 0:
+        return m->AddPrimitive(NodeType::kPlane, {a.x(), a.y(), a.z(), 0.3 + 0.5 * r01(rng)});
+      case 1:
+        return m->AddPrimitive(NodeType::kSphere, {c.x(), c.y(), c.z(), 0.6 + 0.5 * r01(rng)});
       case 2:
         return m->AddPrimitive(NodeType::kCylinder,
                                {c.x(), c.y(), c.z(), a.x(), a.y(), a.z(), 0.5 + 0.4 * r01(rng)});
@@ -146,9 +151,9 @@ int RandomConvexNode(std::mt19937& rng, Model* m, int depth) {
         const Vec v = 0.8 * dir();
         Eigen::Matrix3d q = Eigen::Matrix3d::Identity() + v * v.transpose();
         const Vec b = -q * c;
-        return m->AddPrimitive(NodeType::kQuadric, {q(0, 0), q(1, 1), q(2, 2), q(0, 1), q(0, 2),
-                                                    q(1, 2), b.x(), b.y(), b.z(),
-                                                    c.dot(q * c) - 0.5});
+        return m->AddPrimitive(NodeType::kQuadric,
+                               {q(0, 0), q(1, 1), q(2, 2), q(0, 1), q(0, 2), q(1, 2), b.x(), b.y(),
+                                b.z(), c.dot(q * c) - 0.5});
       }
     }
   }
@@ -174,7 +179,8 @@ TEST(TreeCertificate, CertifiedRandomTreesPassTheSamplingTest) {
     TangentPlaneTestOptions o;
     o.segments = 10000;
     o.seed = trials;
-    const TangentPlaneTestResult s = TangentPlaneTest(m, Vec(-1.5, -1.5, -1.5), Vec(1.5, 1.5, 1.5), o);
+    const TangentPlaneTestResult s =
+        TangentPlaneTest(m, Vec(-1.5, -1.5, -1.5), Vec(1.5, 1.5, 1.5), o);
     EXPECT_GT(s.zero_points, 100) << "tree " << trials;
     EXPECT_EQ(s.violations, 0) << "tree " << trials << " worst " << s.worst_excursion;
   }

@@ -86,15 +86,20 @@ TEST(UnitStep, IsCnMinusOneAtTheKnotsAndNotCn) {
     for (int j = 0; j <= n; ++j) {
       const double knot = 2.0 * j / n - 1.0;
       std::vector<long double> left(n + 1, 0.0L), right(n + 1, 0.0L);
-      if (j > 0) left = OneSidedDerivatives(h, knot, -1.0);
-      else left[0] = 0.0L;
-      if (j < n) right = OneSidedDerivatives(h, knot, +1.0);
-      else right[0] = 1.0L;
+      if (j > 0)
+        left = OneSidedDerivatives(h, knot, -1.0);
+      else
+        left[0] = 0.0L;
+      if (j < n)
+        right = OneSidedDerivatives(h, knot, +1.0);
+      else
+        right[0] = 1.0L;
       const double scale = std::pow(n / 2.0, n);  // d^k/dt^k scales like (n/2)^k
       for (int k = 0; k <= n - 1; ++k)
         EXPECT_NEAR(static_cast<double>(left[k]), static_cast<double>(right[k]), 1e-7 * scale)
             << "n=" << n << " knot " << j << " derivative " << k;
-      EXPECT_GT(std::abs(static_cast<double>(left[n] - right[n])), 1e-3) << "n=" << n << " knot " << j;
+      EXPECT_GT(std::abs(static_cast<double>(left[n] - right[n])), 1e-3)
+          << "n=" << n << " knot " << j;
     }
   }
 }

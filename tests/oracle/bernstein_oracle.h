@@ -32,7 +32,8 @@ inline std::map<MultiIndex, double> ByIndex(int k, const std::vector<double>& b)
   return m;
 }
 
-inline Eigen::Vector4d Barycentric(const std::array<Eigen::Vector3d, 4>& v, const Eigen::Vector3d& x) {
+inline Eigen::Vector4d Barycentric(const std::array<Eigen::Vector3d, 4>& v,
+                                   const Eigen::Vector3d& x) {
   Eigen::Matrix4d m;
   for (int i = 0; i < 4; ++i) m.col(i) << v[i], 1.0;
   Eigen::Vector4d rhs;

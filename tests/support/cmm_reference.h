@@ -3,8 +3,9 @@
 // Sets: 10 mm parts (plane 10 x 10 mm, sphere and cylinder of radius 5 mm, a cone of half angle
 // 25 degrees between 10 and 20 mm from its apex) placed at a random pose far from the origin,
 // probed at 6-40 points on partial arcs (sphere: a cap; cylinder and cone: 2-4 circles, each
-// an arc of 120-240 degrees; 3-4 circles for the cone), with a lobed form error of amplitude 1 um (three lobes around the
-// axis, waves of 5 mm on the plane) and Gaussian noise of 0.1 um along the normal; no normals.
+// an arc of 120-240 degrees; 3-4 circles for the cone), with a lobed form error of amplitude 1 um
+// (three lobes around the axis, waves of 5 mm on the plane) and Gaussian noise of 0.1 um along the
+// normal; no normals.
 //
 // Reference: orthogonal-distance least squares in long double, by Gauss-Newton from the truth
 // with central-difference Jacobians, in the part's own frame and parameterisation (the
@@ -43,7 +44,8 @@ inline Eigen::Matrix3d RandomRotation(std::mt19937& rng) {
   return q.normalized().toRotationMatrix();
 }
 
-inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3, double noise = 1e-4) {
+inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
+                         double noise = 1e-4) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::normal_distribution<double> gauss(0.0, noise);
@@ -54,12 +56,14 @@ inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
   const double R = 5.0, ta = std::tan(CmmSet::kConeHalfAngle);
   // 2..4 circles; 3..4 for the cone (on two circles the cone's algebraic hypotheses from points
   // are rank deficient: see fit/point_hypotheses.h)
-  const int circles = (kind == CmmKind::kCone ? 3 : 2) + static_cast<int>(u01(rng) * (kind == CmmKind::kCone ? 2 : 3));
+  const int circles = (kind == CmmKind::kCone ? 3 : 2) +
+                      static_cast<int>(u01(rng) * (kind == CmmKind::kCone ? 2 : 3));
   const double span = (120 + 120 * u01(rng)) * M_PI / 180, start = 2 * M_PI * u01(rng);
   for (int i = 0; i < n; ++i) {
     Eigen::Vector3d y = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitZ();
     const int c = i % circles;
-    const double phi = start + span * (i / circles + 0.5 * (c % 2)) / std::max(1, (n + circles - 1) / circles);
+    const double phi =
+        start + span * (i / circles + 0.5 * (c % 2)) / std::max(1, (n + circles - 1) / circles);
     const double lobes = lobe * std::cos(3 * phi);
     switch (kind) {
       case CmmKind::kPlane: {
@@ -71,7 +75,8 @@ inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
       }
       case CmmKind::kSphere: {  // cap up to 70 degrees from the pole
         const double theta = 70 * M_PI / 180 * std::sqrt(u01(rng)), az = 2 * M_PI * u01(rng);
-        normal = Eigen::Vector3d(std::sin(theta) * std::cos(az), std::sin(theta) * std::sin(az), std::cos(theta));
+        normal = Eigen::Vector3d(std::sin(theta) * std::cos(az), std::sin(theta) * std::sin(az),
+                                 std::cos(theta));
         y = normal * (R + lobe * std::cos(3 * az));
         break;
       }
@@ -84,7 +89,8 @@ inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
       case CmmKind::kCone: {  // apex at the part origin, axis +z, h in [10, 20]
         const double h = 10 + 10.0 * c / std::max(1, circles - 1);
         const Eigen::Vector3d radial(std::cos(phi), std::sin(phi), 0);
-        normal = (radial * std::cos(CmmSet::kConeHalfAngle) - Eigen::Vector3d::UnitZ() * std::sin(CmmSet::kConeHalfAngle));
+        normal = (radial * std::cos(CmmSet::kConeHalfAngle) -
+                  Eigen::Vector3d::UnitZ() * std::sin(CmmSet::kConeHalfAngle));
         y = radial * h * ta + Eigen::Vector3d(0, 0, h) + normal * lobes;
         break;
       }
@@ -129,7 +135,9 @@ class CmmReference {
       case CmmKind::kPlane:
         return (y.z() - p[0] * y.x() - p[1] * y.y() - p[2]) / sqrt(1 + p[0] * p[0] + p[1] * p[1]);
       case CmmKind::kSphere:
-        return sqrt((y.x() - p[0]) * (y.x() - p[0]) + (y.y() - p[1]) * (y.y() - p[1]) + (y.z() - p[2]) * (y.z() - p[2])) - p[3];
+        return sqrt((y.x() - p[0]) * (y.x() - p[0]) + (y.y() - p[1]) * (y.y() - p[1]) +
+                    (y.z() - p[2]) * (y.z() - p[2])) -
+               p[3];
       case CmmKind::kCylinder: {
         Eigen::Matrix<LD, 3, 1> u(p[2], p[3], 1), q(p[0], p[1], 0);
         u /= u.norm();
@@ -175,17 +183,20 @@ class CmmReference {
   std::vector<Eigen::Matrix<LD, 3, 1>> y_;
 };
 
-inline Eigen::Vector3d ToPart(const CmmSet& s, const Eigen::Vector3d& x) { return s.rotation.transpose() * (x - s.origin); }
+inline Eigen::Vector3d ToPart(const CmmSet& s, const Eigen::Vector3d& x) {
+  return s.rotation.transpose() * (x - s.origin);
+}
 
 // Differences (mm; angles times the part size) of the geometric parameters of a fit p in
 // implicitfit's layout (world frame: plane n, d; sphere c, r; cylinder point, axis, r; cone
 // apex, axis, half angle) and the reference q (part frame).
-inline std::vector<std::pair<std::string, double>> ParameterDifferences(const CmmSet& s, const std::vector<double>& p,
-                                                        const CmmReference::VecL& q) {
+inline std::vector<std::pair<std::string, double>> ParameterDifferences(
+    const CmmSet& s, const std::vector<double>& p, const CmmReference::VecL& q) {
   const double L = CmmSet::kSize;
   std::vector<std::pair<std::string, double>> d;
   auto dir = [&](int at) {
-    Eigen::Vector3d u = s.rotation.transpose() * Eigen::Vector3d(p[at], p[at + 1], p[at + 2]).normalized();
+    Eigen::Vector3d u =
+        s.rotation.transpose() * Eigen::Vector3d(p[at], p[at + 1], p[at + 2]).normalized();
     return u.z() < 0 ? Eigen::Vector3d(-u) : u;
   };
   switch (s.kind) {
@@ -197,14 +208,16 @@ inline std::vector<std::pair<std::string, double>> ParameterDifferences(const Cm
         off = -off;
       }
       const double nr = std::sqrt(1.0 + static_cast<double>(q[0] * q[0] + q[1] * q[1]));
-      const Eigen::Vector3d nref(-static_cast<double>(q[0]) / nr, -static_cast<double>(q[1]) / nr, 1.0 / nr);
+      const Eigen::Vector3d nref(-static_cast<double>(q[0]) / nr, -static_cast<double>(q[1]) / nr,
+                                 1.0 / nr);
       d.push_back({"normal angle x L", std::atan2(n.cross(nref).norm(), n.dot(nref)) * L});
       d.push_back({"offset", std::abs(off - static_cast<double>(q[2]) / nr)});
       break;
     }
     case CmmKind::kSphere: {
       const Eigen::Vector3d c = ToPart(s, Eigen::Vector3d(p[0], p[1], p[2]));
-      for (int k = 0; k < 3; ++k) d.push_back({"center" + std::to_string(k), std::abs(c[k] - static_cast<double>(q[k]))});
+      for (int k = 0; k < 3; ++k)
+        d.push_back({"center" + std::to_string(k), std::abs(c[k] - static_cast<double>(q[k]))});
       d.push_back({"radius", std::abs(p[3] - static_cast<double>(q[3]))});
       break;
     }

@@ -7,7 +7,6 @@
 #pragma once
 
 #include <Eigen/Dense>
-
 #include <functional>
 #include <vector>
 

@@ -3,13 +3,12 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
-
-#include <unistd.h>
 
 namespace testsupport {
 
@@ -40,8 +39,10 @@ inline std::string ScratchDir(const std::string& name) {
 
 inline CommandResult RunCommand(const std::string& command) {
   static int counter = 0;
-  const std::string base = "/tmp/implicitfit_run_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const int status = std::system((command + " > " + base + ".out 2> " + base + ".err < /dev/null").c_str());
+  const std::string base =
+      "/tmp/implicitfit_run_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const int status =
+      std::system((command + " > " + base + ".out 2> " + base + ".err < /dev/null").c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = Slurp(base + ".out");
