@@ -19,6 +19,11 @@ target_include_directories(implicitfit_model PUBLIC
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
   $<INSTALL_INTERFACE:${IMPLICITFIT_INTERNAL_INCLUDEDIR}>)
 
+if(IMPLICITFIT_SANITIZE)  # a consumer of sanitized static libraries links the runtimes too
+  target_link_options(implicitfit_model INTERFACE
+    $<INSTALL_INTERFACE:${IMPLICITFIT_SANITIZER_FLAGS}>)
+endif()
+
 add_library(implicitfit_library INTERFACE)
 add_library(implicitfit::implicitfit ALIAS implicitfit_library)
 target_link_libraries(implicitfit_library INTERFACE implicitfit_model implicitfit_fit

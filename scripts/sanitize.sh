@@ -1,21 +1,21 @@
 #!/usr/bin/env bash
-# Builds the test suite with AddressSanitizer and UndefinedBehaviorSanitizer in ./build-asan and
-# runs it; any sanitizer report fails the run (UBSan does not recover, leaks are reported).
-# Give test target names to build and run only those, e.g. `scripts/sanitize.sh datasets_tests`.
+# AddressSanitizer + UndefinedBehaviorSanitizer (IMPLICITFIT_SANITIZE=ON, in ./build-asan).
+# Without arguments: builds everything and runs the whole suite (what .ci/run does; Python tests
+# included, with the runtimes preloaded into the interpreter). With test target names, e.g.
+# `scripts/sanitize.sh datasets_tests`, builds and runs only those. Any sanitizer report fails
+# the run (UBSan does not recover, leaks are reported).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-# No Python module: an ASan-built extension cannot load into the uninstrumented interpreter.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPLICITFIT_BUILD_BENCHMARKS=OFF -DIMPLICITFIT_BUILD_PYTHON=OFF \
-  "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_EXE_LINKER_FLAGS=$flags" >/dev/null
-export ASAN_OPTIONS=detect_leaks=1
+export IMPLICITFIT_SANITIZE=ON
 if [ $# -eq 0 ]; then
-  cmake --build build-asan -j "$(nproc)"
-  ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
-  exit
+  exec bash scripts/test.sh
 fi
-cmake --build build-asan -j "$(nproc)" --target "$@"
+bash scripts/setup.sh
+source scripts/build_dir.sh
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B "$build_dir" "${build_options[@]}" "${launcher[@]}" >/dev/null
+cmake --build "$build_dir" -j "$(nproc)" --target "$@"
 for target in "$@"; do
-  "$(find build-asan/tests -type f -name "$target" -perm -u+x | head -1)"
+  "$(find "$build_dir/tests" -type f -name "$target" -perm -u+x | head -1)"
 done
