@@ -89,6 +89,11 @@ double Refit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
     }
     if (!improved) break;
   }
+  if (kind == NodeType::kCylinder) {  // the axis point nearest the origin (it drifts along)
+    const Eigen::Vector3d a = p.template segment<3>(3).normalized();
+    const Eigen::Vector3d c = p.template head<3>();
+    p.template head<3>() = c - c.dot(a) * a;
+  }
   Eigen::Map<Vec>(params->data()) = p;
   return std::sqrt(ss / indices.size());
 }

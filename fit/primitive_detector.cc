@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -31,6 +32,12 @@ constexpr double kMaxNoiseToSpacing = 0.4;  // noisier than this * spacing: a vo
 constexpr int kFallbackSteps = 3;           // crease points join a primitive this close
 constexpr double kIncoherentNormalDeg = 15.0;  // median neighbour normal angle of a volume
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
+constexpr int kMaxSplitPieces = 3;      // primitives of the split test's alternative
+// A simpler curved kind replaces the winner only if its penalised cost is at most this times
+// the winner's (a sphere through a short cylindrical band explains its points within the band but
+// leaves the band's sagitta in its residuals: 26 times the cylinder's cost on Fit4CAD PC155).
+constexpr double kSimplerCostRatio = 2.0;
+constexpr double kRetryBand = 0.5;  // band (x tau) of the retried growth of a candidate
 
 // Degrees of freedom of a kind (the BIC penalty).
 int DegreesOfFreedom(NodeType kind) {
@@ -125,10 +132,11 @@ class Detector {
         options_(options),
         labels_(x.size(), -1) {}
 
-  bool Supports(const PrimitiveFunction& f, int i) const {
+  bool Supports(const PrimitiveFunction& f, int i) const { return Supports(f, i, tau_); }
+  bool Supports(const PrimitiveFunction& f, int i, double band) const {
     Vector3d g;
     const double r = f(x_[i], &g);
-    if (!(std::abs(r) < tau_)) return false;
+    if (!(std::abs(r) < band)) return false;
     const double gn = g.norm();
     return gn > 0 && std::abs(g.dot(n_[i])) >= cos_ * gn;
   }
@@ -136,6 +144,21 @@ class Detector {
   struct Workspace {
     std::vector<unsigned> stamp;
     unsigned current = 0;
+    // Growth restricted to a region (the split test): points whose region stamp differs are
+    // treated as taken.
+    std::vector<unsigned> region;
+    unsigned region_id = 0;
+    bool restricted = false;
+    void Restrict(const std::vector<int>& points, size_t n) {
+      if (region.size() != n) region.assign(n, 0), region_id = 0;
+      if (++region_id == 0) {
+        std::fill(region.begin(), region.end(), 0);
+        region_id = 1;
+      }
+      for (int i : points) region[i] = region_id;
+      restricted = true;
+    }
+    bool Blocked(int i) const { return restricted && region[i] != region_id; }
     void Next(size_t n) {
       if (stamp.size() != n) stamp.assign(n, 0), current = 0;
       if (++current == 0) {
@@ -146,20 +169,20 @@ class Detector {
   };
 
   // The free points connected to `sources` through points that support f.
-  std::vector<int> Grow(const PrimitiveFunction& f, const std::vector<int>& sources,
-                        Workspace& w) const {
+  std::vector<int> Grow(const PrimitiveFunction& f, const std::vector<int>& sources, Workspace& w,
+                        double band) const {
     w.Next(x_.size());
     std::vector<int> out;
     for (int s : sources) {
-      if (labels_[s] >= 0 || w.stamp[s] == w.current) continue;
+      if (labels_[s] >= 0 || w.Blocked(s) || w.stamp[s] == w.current) continue;
       w.stamp[s] = w.current;
-      if (Supports(f, s)) out.push_back(s);
+      if (Supports(f, s, band)) out.push_back(s);
     }
     for (size_t h = 0; h < out.size(); ++h)
       for (int j : nb_[out[h]]) {
-        if (labels_[j] >= 0 || w.stamp[j] == w.current) continue;
+        if (labels_[j] >= 0 || w.Blocked(j) || w.stamp[j] == w.current) continue;
         w.stamp[j] = w.current;
-        if (Supports(f, j)) out.push_back(j);
+        if (Supports(f, j, band)) out.push_back(j);
       }
     return out;
   }
@@ -171,7 +194,7 @@ class Detector {
     w.stamp[seed] = w.current;
     for (size_t h = 0; h < out.size() && static_cast<int>(out.size()) < options_.patch_size; ++h)
       for (int j : nb_[out[h]]) {
-        if (labels_[j] >= 0 || w.stamp[j] == w.current) continue;
+        if (labels_[j] >= 0 || w.Blocked(j) || w.stamp[j] == w.current) continue;
         w.stamp[j] = w.current;
         out.push_back(j);
         if (static_cast<int>(out.size()) >= options_.patch_size) break;
@@ -209,7 +232,12 @@ class Detector {
   bool Reasonable(NodeType kind, const std::vector<double>& p) const {
     const double limit = kFarFactor * diagonal_;
     if (kind == NodeType::kPlane) return true;
-    if (Vector3d(p[0], p[1], p[2]).norm() > limit) return false;
+    Vector3d c(p[0], p[1], p[2]);
+    if (kind == NodeType::kCylinder) {  // any point of the axis: its distance to the origin
+      const Vector3d a = Vector3d(p[3], p[4], p[5]).normalized();
+      c -= c.dot(a) * a;
+    }
+    if (c.norm() > limit) return false;
     if (kind == NodeType::kSphere) return p[3] < limit;
     if (kind == NodeType::kCylinder) return p[6] < limit;
     if (kind == NodeType::kTorus) return p[6] < limit && p[7] < limit;
@@ -233,6 +261,7 @@ class Detector {
     Grown best;
     std::vector<double> h;
     int best_score = 0;
+    double best_residual = INFINITY;
     std::vector<double> params;
     const int tries =
         kind == NodeType::kPlane ? std::max(4, options_.hypotheses / 3) : options_.hypotheses;
@@ -249,52 +278,70 @@ class Detector {
       } else if (!Hypothesis(kind, patch, rng, &h) || !Finite(h)) {
         continue;
       }
+      // Score: supported patch points; ties (every hypothesis through a small patch may hold
+      // all of it) go to the smallest sum of squared residuals over them (the most accurate).
       const PrimitiveFunction f(kind, h);
       int score = 0;
-      for (int i : patch) score += Supports(f, i);
-      if (score > best_score) best_score = score, params = h;
+      double residual = 0;
+      for (int i : patch)
+        if (Supports(f, i)) {
+          ++score;
+          const double r = f(x_[i]);
+          residual += r * r;
+        }
+      if (score > best_score || (score == best_score && residual < best_residual))
+        best_score = score, best_residual = residual, params = h;
     }
     if (best_score < std::min<int>(8, patch.size() / 2)) return best;
-    auto patch_support = [&](const std::vector<double>& p) {
-      const PrimitiveFunction f(kind, p);
-      std::vector<int> s;
-      for (int i : patch)
-        if (Supports(f, i)) s.push_back(i);
-      return s;
-    };
-    {  // Refit on the patch support first.
-      std::vector<double> refit = params;
-      std::vector<int> s = patch_support(params);
-      if (RefitPrimitiveLocally(kind, x_, s, &refit) >= 0 && Finite(refit) &&
-          patch_support(refit).size() >= s.size())
-        params = refit;
-    }
-    std::vector<int> sources = patch_support(params);
-    best.params = params;
-    best.support = Grow(PrimitiveFunction(kind, params), sources, w);
-    for (int round = 0; round < kGrowthRounds; ++round) {
+    // Growth within a distance band; a growth whose RMS shows it crossed a tangent joint (the
+    // surface leaves the model slowly, so the band is crossed gradually) is retried once in half
+    // the band, which stops it nearer the joint.
+    const std::vector<double> start = params;
+    for (double band : {tau_, kRetryBand * tau_}) {
+      params = start;
+      best = Grown();
+      auto patch_support = [&](const std::vector<double>& p) {
+        const PrimitiveFunction f(kind, p);
+        std::vector<int> s;
+        for (int i : patch)
+          if (Supports(f, i, band)) s.push_back(i);
+        return s;
+      };
+      {  // Refit on the patch support first.
+        std::vector<double> refit = params;
+        std::vector<int> s = patch_support(params);
+        if (RefitPrimitiveLocally(kind, x_, s, &refit) >= 0 && Finite(refit) &&
+            patch_support(refit).size() >= s.size())
+          params = refit;
+      }
+      std::vector<int> sources = patch_support(params);
+      best.params = params;
+      best.support = Grow(PrimitiveFunction(kind, params), sources, w, band);
+      for (int round = 0; round < kGrowthRounds; ++round) {
+        std::vector<double> refit = best.params;
+        if (RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit) < 0 ||
+            !Finite(refit))
+          break;
+        std::vector<int> s = patch_support(refit);
+        if (s.empty()) break;
+        std::vector<int> grown = Grow(PrimitiveFunction(kind, refit), s, w, band);
+        if (grown.size() <= best.support.size()) break;
+        const bool small_gain = grown.size() < 1.02 * best.support.size();
+        best.params = std::move(refit);
+        best.support = std::move(grown);
+        if (small_gain) break;
+      }
+      // The least-squares fit to the final support (the kind selection compares fitted models).
       std::vector<double> refit = best.params;
-      if (RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit) < 0 ||
-          !Finite(refit))
-        break;
-      std::vector<int> s = patch_support(refit);
-      if (s.empty()) break;
-      std::vector<int> grown = Grow(PrimitiveFunction(kind, refit), s, w);
-      if (grown.size() <= best.support.size()) break;
-      const bool small_gain = grown.size() < 1.02 * best.support.size();
-      best.params = std::move(refit);
-      best.support = std::move(grown);
-      if (small_gain) break;
+      const double rms =
+          RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
+      if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
+      // A right model leaves the noise (RMS ~ sigma); a wrong one that happens to cross the band
+      // (a cone through the faces at a vertex) spreads its residuals over it (RMS ~ tau / sqrt 3).
+      // Far-off (degenerate) shapes, e.g. a torus of radius 1e13 imitating a cone, are dropped.
+      if (rms <= kMaxRmsSigmas * sigma_ && Reasonable(kind, best.params)) return best;
     }
-    // The least-squares fit to the final support (the kind selection compares fitted models).
-    std::vector<double> refit = best.params;
-    const double rms =
-        RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
-    if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
-    // A right model leaves the noise (RMS ~ sigma); a wrong one that happens to cross the band
-    // (a cone through the faces at a vertex) spreads its residuals over it (RMS ~ tau / sqrt 3).
-    // Far-off (degenerate) shapes, e.g. a torus of radius 1e13 imitating a cone, are dropped too.
-    if (rms > kMaxRmsSigmas * sigma_ || !Reasonable(kind, best.params)) best.support.clear();
+    best.support.clear();
     return best;
   }
 
@@ -304,6 +351,99 @@ class Detector {
     std::vector<int> support;
     std::vector<int> patch;
   };
+
+  // Seedable: the point's normal agrees (within theta) with those of its first 8 neighbours.
+  bool Seedable(int i) const {
+    if (nb_[i].empty()) return false;
+    for (size_t k = 0; k < std::min<size_t>(8, nb_[i].size()); ++k)
+      if (std::abs(n_[i].dot(n_[nb_[i][k]])) < cos_) return false;
+    return true;
+  }
+
+  // The split test of a curved winner W grown on U = `all` (u: its evenly spread subset, each
+  // standing for `scale` points). Alternatives: each of the seed's candidates of a simpler kind
+  // (fewer degrees of freedom than W) as piece 1, then up to kMaxSplitPieces - 1 primitives of
+  // simpler kinds grown (the largest support, ties to the simpler kind) from a seed on what the
+  // previous pieces leave of U, growth restricted to it. W and the alternatives are scored by
+  // the penalised truncated-Gaussian likelihood of the kind selection, each point costing its
+  // smallest residual over the pieces:
+  //   C_W     = sum_{i in u} min(r_iW^2 / s^2, cap) scale + p_W ln |U|,
+  //   C_split = sum_{i in u} min_j min(r_ij^2 / s^2, cap) scale + sum_j p_j ln |U|.
+  // A surface that really is W leaves simpler pieces that cover only part of it, at residuals
+  // above the noise (capped cost for the rest), so W wins; a torus spanning a cylinder and a
+  // tangent plane, or a flat cone over the faces at a polyhedron's vertex, leaves exact pieces.
+  // Returns the piece 1 (index in `grown`) of the cheapest alternative cheaper than W, else -1.
+  int SplitTest(size_t winner, const std::vector<Grown>& grown, const std::vector<NodeType>& kinds,
+                const std::vector<int>& all, const std::vector<int>& u, double scale,
+                std::mt19937& rng, Workspace& w) const {
+    auto allowed = [&](NodeType k) {
+      return DegreesOfFreedom(k) < DegreesOfFreedom(kinds[winner]);
+    };
+    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
+    const double ln_u = std::log(static_cast<double>(all.size()));
+    auto cost_of = [&](const std::vector<PrimitiveFunction>& pieces, int dof) {
+      double cost = 0;
+      for (int i : u) {
+        double c = cap;
+        for (const auto& f : pieces) {
+          const double q = f(x_[i]);
+          c = std::min(c, q * q / (sigma_ * sigma_));
+        }
+        cost += c;
+      }
+      return cost * scale + dof * ln_u;
+    };
+    const double cost_w = cost_of({PrimitiveFunction(kinds[winner], grown[winner].params)},
+                                  DegreesOfFreedom(kinds[winner]));
+    double best_cost = cost_w;
+    int best_first = -1;
+    for (size_t first = 0; first < grown.size(); ++first) {
+      if (first == winner || !allowed(kinds[first])) continue;
+      std::vector<PrimitiveFunction> pieces = {
+          PrimitiveFunction(kinds[first], grown[first].params)};
+      int dof = DegreesOfFreedom(kinds[first]);
+      std::vector<int> rest;
+      {
+        std::vector<int> taken = grown[first].support;
+        std::sort(taken.begin(), taken.end());
+        std::set_difference(all.begin(), all.end(), taken.begin(), taken.end(),
+                            std::back_inserter(rest));
+      }
+      for (int piece = 1; piece < kMaxSplitPieces; ++piece) {
+        if (static_cast<int>(rest.size()) < std::max(min_points_, 8)) break;
+        int seed = -1;
+        std::uniform_int_distribution<size_t> pick(0, rest.size() - 1);
+        for (int t = 0; t < 10 && seed < 0; ++t) {
+          const int i = rest[pick(rng)];
+          if (Seedable(i)) seed = i;
+        }
+        if (seed < 0) break;
+        w.Restrict(rest, x_.size());
+        const std::vector<int> patch = Patch(seed, w);
+        Grown g;
+        NodeType kind = NodeType::kPlane;
+        if (static_cast<int>(patch.size()) >= std::min(options_.patch_size, 8))
+          for (NodeType k : options_.kinds) {
+            if (!allowed(k)) continue;
+            Grown h = GrowKind(k, patch, rng, w);
+            if (h.support.size() > g.support.size() * (1.0 / kSimplerFraction))
+              g = std::move(h), kind = k;
+          }
+        w.restricted = false;
+        if (g.support.empty()) break;
+        pieces.emplace_back(kind, g.params);
+        dof += DegreesOfFreedom(kind);
+        std::sort(g.support.begin(), g.support.end());
+        std::vector<int> left;
+        std::set_difference(rest.begin(), rest.end(), g.support.begin(), g.support.end(),
+                            std::back_inserter(left));
+        rest = std::move(left);
+      }
+      const double cost = cost_of(pieces, dof);
+      if (cost < best_cost) best_cost = cost, best_first = static_cast<int>(first);
+    }
+    return best_first;
+  }
 
   // The candidate of one seed: every kind grown, the kind chosen by the penalised likelihood.
   Candidate Propose(int seed, std::mt19937& rng, Workspace& w) const {
@@ -328,6 +468,7 @@ class Detector {
     const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     double best_cost = INFINITY;
     size_t best = 0;
+    std::vector<double> costs(grown.size());
     for (size_t k = 0; k < grown.size(); ++k) {
       const PrimitiveFunction f(kinds[k], grown[k].params);
       double cost = 0;
@@ -336,11 +477,13 @@ class Detector {
         cost += std::min(r * r / (sigma_ * sigma_), cap);
       }
       cost = cost * scale + DegreesOfFreedom(kinds[k]) * std::log(static_cast<double>(all.size()));
+      costs[k] = cost;
       if (cost < best_cost) best_cost = cost, best = k;
     }
     // The simplest kind that explains (within the bands) at least kSimplerFraction as many
     // points of U as the winner replaces it: differences below the detection tolerance do not
-    // buy parameters (a plane beats a huge-radius sphere on a slightly bulging face).
+    // buy parameters (a plane beats a huge-radius sphere on a slightly bulging face). A curved
+    // simpler kind must also cost at most kSimplerCostRatio times the winner's cost.
     std::vector<int> explained(grown.size(), 0);
     for (size_t k = 0; k < grown.size(); ++k) {
       const PrimitiveFunction f(kinds[k], grown[k].params);
@@ -349,8 +492,15 @@ class Detector {
     const size_t winner = best;
     for (size_t k = 0; k < grown.size(); ++k)
       if (DegreesOfFreedom(kinds[k]) < DegreesOfFreedom(kinds[best]) &&
-          explained[k] >= kSimplerFraction * explained[winner])
+          explained[k] >= kSimplerFraction * explained[winner] &&
+          (kinds[k] == NodeType::kPlane || costs[k] <= kSimplerCostRatio * costs[winner]))
         best = k;
+    // Split test: a curved winner that grew across a tangent joint is better explained by the
+    // seed's other candidate plus primitives found on the rest of U.
+    if (kinds[best] != NodeType::kPlane) {
+      const int first = SplitTest(best, grown, kinds, all, u, scale, rng, w);
+      if (first >= 0) best = first;
+    }
     c.kind = kinds[best];
     c.params = std::move(grown[best].params);
     c.support = std::move(grown[best].support);
@@ -366,12 +516,8 @@ class Detector {
     std::vector<Workspace> workspaces(threads);
     // Seedable points: normal within theta of each of its first 8 neighbours (not on a crease).
     std::vector<int> pool;
-    for (int i = 0; i < N; ++i) {
-      bool ok = !nb_[i].empty();
-      for (size_t k = 0; k < std::min<size_t>(8, nb_[i].size()) && ok; ++k)
-        ok = std::abs(n_[i].dot(n_[nb_[i][k]])) >= cos_;
-      if (ok) pool.push_back(i);
-    }
+    for (int i = 0; i < N; ++i)
+      if (Seedable(i)) pool.push_back(i);
     std::vector<char> tried(N, 0);
     std::mt19937 rng(options_.seed);
     int free_points = N, failures = 0;
@@ -489,10 +635,60 @@ class Detector {
     return merges;
   }
 
+  // The best `kind` for the points s: hypotheses from the whole set (fit/patch_hypotheses.h) and
+  // from minimal samples, the one explaining most points refitted by least squares. Returns the
+  // number of points of s it explains (-1: no hypothesis).
+  int FitKindToSupport(NodeType kind, const std::vector<int>& s, std::mt19937& rng,
+                       std::vector<double>* params) const {
+    auto explained = [&](const std::vector<double>& q) {
+      const PrimitiveFunction f(kind, q);
+      int n = 0;
+      for (int i : s) n += Supports(f, i);
+      return n;
+    };
+    std::vector<Vector3d> px, pn;
+    for (int i : s) px.push_back(x_[i]), pn.push_back(n_[i]);
+    std::vector<std::vector<double>> hypotheses;
+    std::vector<double> h;
+    if ((kind == NodeType::kPlane && PlaneFromPatch(px, pn, &h)) ||
+        (kind == NodeType::kSphere && SphereFromPatch(px, pn, &h)) ||
+        (kind == NodeType::kCylinder && CylinderFromPatch(px, pn, &h)))
+      hypotheses.push_back(h);
+    for (int t = 0; t < options_.hypotheses; ++t)
+      if (Hypothesis(kind, s, rng, &h) && Finite(h)) hypotheses.push_back(h);
+    int best = -1;
+    for (auto& q : hypotheses) {
+      const int n = explained(q);
+      if (n > best) best = n, *params = q;
+    }
+    if (best < 0) return -1;
+    std::vector<double> refit = *params;
+    if (RefitPrimitiveLocally(kind, x_, s, &refit, 30) >= 0 && Finite(refit) &&
+        Reasonable(kind, refit)) {
+      const int n = explained(refit);
+      if (n >= best) best = n, *params = refit;
+    }
+    return best;
+  }
+
+  // The kind selection's cost on the points s: truncated Gaussian plus the BIC penalty.
+  double PenalisedCost(NodeType kind, const std::vector<double>& params,
+                       const std::vector<int>& s) const {
+    const PrimitiveFunction f(kind, params);
+    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
+    double cost = 0;
+    for (int i : s) {
+      const double r = f(x_[i]);
+      cost += std::min(r * r / (sigma_ * sigma_), cap);
+    }
+    return cost +
+           DegreesOfFreedom(kind) * std::log(static_cast<double>(std::max<size_t>(2, s.size())));
+  }
+
   // The simplest allowed kind that explains at least kSimplerFraction as many of a primitive's
   // points as its own model replaces it (a cylinder grown as a huge-radius torus, a sphere as a
-  // torus of zero major radius): hypotheses from the whole support (fit/patch_hypotheses.h; cones
-  // from minimal samples), refitted by least squares.
+  // torus of zero major radius), a curved one only if its penalised cost on them is within
+  // kSimplerCostRatio of the own model's: FitKindToSupport on the whole support.
   int Simplify() {
     int changed = 0;
     const int threads = options_.num_threads > 0
@@ -509,39 +705,21 @@ class Detector {
         return n;
       };
       const int own = explained(p.kind, p.parameters);
+      const double own_cost = PenalisedCost(p.kind, p.parameters, s);
       std::vector<NodeType> simpler;
       for (NodeType kind : options_.kinds)
         if (DegreesOfFreedom(kind) < DegreesOfFreedom(p.kind)) simpler.push_back(kind);
       std::sort(simpler.begin(), simpler.end(),
                 [](NodeType a, NodeType b) { return DegreesOfFreedom(a) < DegreesOfFreedom(b); });
-      std::vector<Vector3d> px, pn;
-      for (int i : s) px.push_back(x_[i]), pn.push_back(n_[i]);
       std::seed_seq seq{options_.seed, 0x5eedu, static_cast<unsigned>(k)};
       std::mt19937 rng(seq);
       for (NodeType kind : simpler) {
-        std::vector<std::vector<double>> hypotheses;
-        std::vector<double> h;
-        if ((kind == NodeType::kPlane && PlaneFromPatch(px, pn, &h)) ||
-            (kind == NodeType::kSphere && SphereFromPatch(px, pn, &h)) ||
-            (kind == NodeType::kCylinder && CylinderFromPatch(px, pn, &h)))
-          hypotheses.push_back(h);
-        if (kind == NodeType::kCone || kind == NodeType::kSphere || kind == NodeType::kCylinder)
-          for (int t = 0; t < options_.hypotheses; ++t)
-            if (Hypothesis(kind, s, rng, &h) && Finite(h)) hypotheses.push_back(h);
-        int best = -1;
         std::vector<double> best_params;
-        for (auto& q : hypotheses) {
-          const int n = explained(kind, q);
-          if (n > best) best = n, best_params = q;
-        }
+        const int best = FitKindToSupport(kind, s, rng, &best_params);
         if (best < 0) continue;
-        std::vector<double> refit = best_params;
-        if (RefitPrimitiveLocally(kind, x_, s, &refit, 30) >= 0 && Finite(refit) &&
-            Reasonable(kind, refit)) {
-          const int n = explained(kind, refit);
-          if (n >= best) best = n, best_params = refit;
-        }
-        if (best >= kSimplerFraction * own) {
+        if (best >= kSimplerFraction * own &&
+            (kind == NodeType::kPlane ||
+             PenalisedCost(kind, best_params, s) <= kSimplerCostRatio * own_cost)) {
           p.kind = kind;
           p.parameters = best_params;
           flags[k] = 1;

@@ -18,12 +18,15 @@
 // its patch is the first `patch_size` unassigned points reached from it over the k-nearest-
 // neighbour graph. For every allowed kind, the fit to the whole patch (fit/patch_hypotheses.h)
 // and minimal samples of the patch's oriented points (fit/minimal_samples.h) give hypotheses;
-// the best-supported one on the patch is refitted to its patch support
+// the best-supported one on the patch (ties: the smallest sum of squared residuals) is refitted
+// to its patch support
 // (fit/local_primitive_refit.h), then grown from it over the neighbour graph: the support is the
 // set of unassigned points connected to the patch through supporting points (connected at the
 // sampling density), refitted and regrown while it grows, and least-squares fitted at the end.
-// A kind's candidate is dropped when its RMS exceeds 2 sigma (a wrong surface crossing the band
-// spreads its residuals over it) or when it lies more than 10 cloud diagonals away (degenerate).
+// A kind's candidate whose RMS exceeds 2 sigma (a wrong surface crossing the band spreads its
+// residuals over it; a right one grown past a tangent joint too) is grown again in half the band;
+// it is dropped if its RMS still exceeds 2 sigma or when it lies more than 10 cloud diagonals
+// away (degenerate; a cylinder's distance is its axis line's).
 // Kind (penalised likelihood): on the union U of the kinds' supports, each kind's cost is the
 // truncated-Gaussian (MSAC) negative log-likelihood plus the BIC penalty,
 //   C_k = sum_{i in U} min(r_ik^2 / s^2, tau^2 / s^2) + p_k ln |U|,
@@ -31,7 +34,15 @@
 // sphere 4, cylinder 5, cone 6, torus 7); the smallest cost wins. Then the simplest kind that
 // explains (within both bands) at least 97% as many points of U as the winner replaces it:
 // differences below the detection tolerance buy no parameters, so a plane beats a huge-radius
-// sphere or cylinder unless the curved surface explains more than 3% more of the points.
+// sphere or cylinder unless the curved surface explains more than 3% more of the points. A
+// curved simpler kind must also cost (C_k) at most 2 times the winner's: a sphere through a short
+// cylindrical band explains its points within the band but leaves the sagitta in its residuals.
+// Split test (tangent joints): a curved winner W that grew across a tangent-continuous joint
+// (a torus over a cylinder and its fillet, a flat cone over the faces at a polyhedron's vertex)
+// is compared with alternatives made of simpler kinds: each of the seed's simpler candidates,
+// plus up to two simpler primitives grown on what it leaves of U (growth restricted to U);
+// each point costs its smallest truncated residual over the pieces, plus the pieces' BIC
+// penalties. When an alternative costs less than W, the seed's candidate is its first piece.
 // Rounds: `seeds_per_round` seeds (each with its own RNG seeded from the seed, the round and its
 // index, so the result does not depend on the thread count) are evaluated in parallel; their
 // candidates are accepted greedily by support size, each keeping its still-unassigned points
@@ -39,7 +50,8 @@
 // ln(0.01) / ln(1 - m / R) failed seeds in a row (a primitive of m = min_points points among R
 // remaining ones would have been seeded with 99% probability).
 // Final stage: each primitive is replaced by the simplest kind that explains 97% as many of its
-// points (hypotheses from its whole support); pieces of one surface are merged (same kind,
+// points (hypotheses from its whole support and minimal samples; curved kinds within 2 times the
+// cost); pieces of one surface are merged (same kind,
 // adjacent, each explaining >= 80% of the other's points); every point is re-assigned to the
 // primitive explaining it best (|f| < tau; among those with agreeing normals the smallest |f|,
 // else, for points next to a primitive's support, the smallest |f| whatever the normal: creases

@@ -48,9 +48,12 @@ void Describe(const std::vector<int>& labels, const std::vector<NodeType>& kinds
                 m.match[g], m.match[g] >= 0 ? NodeTypeName(r.primitives[m.match[g]].kind) : "-",
                 m.match[g] >= 0 ? static_cast<int>(r.primitives[m.match[g]].points.size()) : 0,
                 m.iou[g]);
-  for (size_t d = 0; d < r.primitives.size(); ++d)
-    std::printf("  detected %zu %s %zu\n", d, NodeTypeName(r.primitives[d].kind),
-                r.primitives[d].points.size());
+  for (size_t d = 0; d < r.primitives.size(); ++d) {
+    std::printf("  detected %zu %s %zu rms %.3g:", d, NodeTypeName(r.primitives[d].kind),
+                r.primitives[d].points.size(), r.primitives[d].rms_distance);
+    for (double v : r.primitives[d].parameters) std::printf(" %.4g", v);
+    std::printf("\n");
+  }
 }
 
 SegmentationMetrics Score(const GeneratedScene& scene, const DetectionResult& r) {
