@@ -50,7 +50,7 @@ void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
       NodeType type;
       if (!FittableKindFromName(e.kind, &type))
         throw LineError(manifest, number,
-                        "unknown kind '" + e.kind + "' (plane, sphere, cylinder, cone, torus)");
+                        "unknown kind '" + e.kind + "' (" + FittableKindNames() + ")");
     }
     const fs::path p(line);
     e.path = p.is_absolute() || base.empty() ? line : (base / p).string();

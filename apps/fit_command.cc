@@ -129,17 +129,7 @@ CommandAction AddFitCommand(CLI::App& app) {
     const Model model = result.ToModel(options.kind);
     WriteModelFile(model, a->out);
     std::printf("%s\n", ModelToJson(model)["root"].dump().c_str());
-    std::printf(
-        "points %zu  inliers %zu  rms %.6g  max %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
-        fit.points, result.inliers.size(), result.rms, result.max_abs, result.sigma,
-        result.mean_normal_angle_deg, result.seconds);
-    std::printf("estimator %s  form error %.6g (min %.6g, max %.6g)",
-                EstimatorName(result.estimator), result.form.form_error, result.form.min_distance,
-                result.form.max_distance);
-    if (result.estimator == Estimator::kMinimumZone)
-      std::printf("  zone width %.6g, contacts %d outer / %d inner", result.zone.zone_width,
-                  result.zone.outer_contacts, result.zone.inner_contacts);
-    std::printf("\n");
+    std::printf("%s\n", result.BriefReport().c_str());
     return 0;
   };
 }

@@ -37,7 +37,7 @@ CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& option
   CloudFit fit;
   fit.points = cloud.size();
   fit.result = FitPrimitive(cloud.points, cloud.normals, options);
-  fit.report = PrimitiveFitReport(fit.result, options.kind, cloud.size(), normals);
+  fit.report = fit.result.ToJson(normals);
   return fit;
 }
 
@@ -46,7 +46,7 @@ PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned se
                                             const std::vector<std::string>& fixes) {
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))
-    throw InputError("--model " + kind + ": unknown kind (plane, sphere, cylinder, cone, torus)");
+    throw InputError("--model " + kind + ": unknown kind (" + FittableKindNames() + ")");
   options.seed = seed;
   options.threshold = threshold;
   for (const std::string& f : fixes) options.fixed.insert(ParseFixOption(f));

@@ -89,7 +89,7 @@ int RunTreeFit(const ModelFitRequest& request) {
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, TreeFitOptions{});
-  const nlohmann::json report = TreeFitReport(r, cloud.size(), normals);
+  const nlohmann::json report = r.ToJson(normals);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
     std::cerr << "implicitfit fit: " << request.cloud << ": model tree fit failed: " << r.message
@@ -97,8 +97,7 @@ int RunTreeFit(const ModelFitRequest& request) {
     return 1;
   }
   Finish(request, r.model, report);
-  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
-              cloud.size(), r.inliers, r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
+  std::printf("%s\n", r.BriefReport().c_str());
   return 0;
 }
 
@@ -118,19 +117,9 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
     return 1;
   }
   const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, TreeFitOptions{});
-  report.update({{"success", r.success},
-                 {"message", r.message},
-                 {"inliers", r.inliers},
-                 {"rms_distance", r.rms},
-                 {"sigma", r.sigma},
-                 {"mean_normal_angle_deg", r.mean_normal_angle_deg},
-                 {"iterations", r.iterations},
-                 {"seconds", r.seconds}});
-  const std::vector<std::string> names = r.model.ParameterNames();
-  for (size_t i = 0; i < names.size(); ++i) {
-    report["parameters"][names[i]] = r.model.parameters()[i];
-    report["start"][names[i]] = start.model.parameters()[i];
-  }
+  report.update(r.ToJson(normals));
+  const std::vector<std::string> names = start.model.ParameterNames();
+  for (size_t i = 0; i < names.size(); ++i) report["start"][names[i]] = start.model.parameters()[i];
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
     std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind
@@ -138,8 +127,7 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
     return 1;
   }
   Finish(request, r.model, report);
-  std::printf("points %zu  inliers %d  rms %.6g  sigma %.6g  normal angle %.3g deg  %.3f s\n",
-              cloud.size(), r.inliers, r.rms, r.sigma, r.mean_normal_angle_deg, r.seconds);
+  std::printf("%s\n", r.BriefReport().c_str());
   return 0;
 }
 
@@ -163,7 +151,9 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request) {
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const PatchFitResult r = FitBernsteinPatch(cloud.points, cloud.normals, options);
-  return MakeModelKindFit(r, PatchFitReport(r, options, cloud.size(), normals), cloud.size());
+  ModelKindFit fit = MakeModelKindFit(r, r.ToJson(normals), cloud.size());
+  fit.brief = r.BriefReport();
+  return fit;
 }
 
 int RunPatchFit(const ModelFitRequest& request) {
@@ -176,13 +166,7 @@ int RunPatchFit(const ModelFitRequest& request) {
     return 1;
   }
   Finish(request, fit.model, report);
-  std::printf(
-      "points %zu  rms %.6g  normal angle %.3g deg  certified convex %s (min eigenvalue %.3g)",
-      fit.points, fit.rms, report["mean_normal_angle_deg"].get<double>(),
-      fit.certified_convex ? "yes" : "no", report["min_eigenvalue"].get<double>());
-  if (request.convex)
-    std::printf("  unconstrained rms %.6g", report["unconstrained_rms_distance"].get<double>());
-  std::printf("  %.3f s\n", report["seconds"].get<double>());
+  std::printf("%s\n", fit.brief.c_str());
   return 0;
 }
 

@@ -43,6 +43,7 @@ struct ModelKindFit {
   double rms = 0.0;
   bool certified_convex = false;
   nlohmann::json report;
+  std::string brief;  // the result's BriefReport() (patch kinds)
   Model model;
 };
 // The common fields of a patch or patch-mesh fit result (success, message, rms,

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "datasets/model_mesher.h"
+#include "model/primitive_kinds.h"
 
 namespace implicitfit {
 namespace {
@@ -30,35 +31,17 @@ void ChildrenBox(const Model& model, const ModelNode& node, Vec* lo, Vec* hi) {
 void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
   const ModelNode& node = model.nodes()[index];
   const double* p = model.parameters().data() + node.first_parameter;
-  auto around = [&](const Vec& c, double half) {
-    *lo = c - Vec::Constant(half);
-    *hi = c + Vec::Constant(half);
-  };
   switch (node.type) {
-    case NodeType::kPlane: {
-      const Vec n(p[0], p[1], p[2]);
-      around(n * p[3] / n.squaredNorm(), 1.0);
-      return;
-    }
+    case NodeType::kPlane:  // primitives: their table entry's box (model/primitive_kinds.h)
     case NodeType::kSphere:
-      around(Vec(p[0], p[1], p[2]), p[3] * 1.05);
-      return;
     case NodeType::kCylinder:
-      around(Vec(p[0], p[1], p[2]), 2.0 * p[6]);
-      return;
-    case NodeType::kCone: {
-      const Vec a = Vec(p[3], p[4], p[5]).normalized();
-      around(Vec(p[0], p[1], p[2]) + a, 1.0 + std::tan(p[6]));
-      return;
-    }
+    case NodeType::kCone:
     case NodeType::kTorus:
-      around(Vec(p[0], p[1], p[2]), (p[6] + p[7]) * 1.05);
-      return;
     case NodeType::kEllipsoid:
-      around(Vec(p[0], p[1], p[2]), 1.05 * std::max({p[3], p[4], p[5]}));
-      return;
     case NodeType::kQuadric:
-      around(Vec::Zero(), 2.0);
+    case NodeType::kBox:
+    case NodeType::kParaboloid:
+      FindPrimitiveKind(node.type)->sampling_box(p, lo, hi);
       return;
     case NodeType::kBernsteinPatch: {
       // The patch is meant inside its tetrahedron (the fitters place the cloud there): its
@@ -77,12 +60,6 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       *lo = node.grid.BoxMin();
       *hi = node.grid.BoxMax();
       return;
-    case NodeType::kBox:
-      around(Vec(p[0], p[1], p[2]), 1.05 * Vec(p[7], p[8], p[9]).norm());
-      return;
-    case NodeType::kParaboloid:
-      around(Vec(p[0], p[1], p[2]), 1.0);
-      return;                 // the cap |w| <= 1
     case NodeType::kBlobs: {  // every blob's centre +- its reach (gaussian: where a e^(-b R^2) =
                               // T/4)
       const int m = node.count;

@@ -1,6 +1,10 @@
 // The JSON reports of the fits, as `implicitfit fit --report` writes them and the Python module
-// returns them (one builder for both, so the two always agree). `points` is the cloud's size and
-// `normals` says where the normals came from (datasets/oriented_cloud.h, or "given").
+// returns them (one builder for both, so the two always agree): the results' ToJson(normals)
+// (fit/fit_summary.h), and these functions, which take the kind, point count, degree and
+// convexity flag from their arguments instead of the result. Every report also has
+// "termination": CONVERGENCE, NO_CONVERGENCE or FAILURE (fit/fit_termination.h). `points` is the
+// cloud's size and `normals` says where the normals came from (datasets/oriented_cloud.h, or
+// "given").
 //   primitive: {"success", "message", "points", "inliers", "rms_distance", "max_distance",
 //               "sigma", "mean_normal_angle_deg", "iterations", "rounds", "seconds", "normals",
 //               "parameters": {field: value}, "standard_deviations": {field: value}}

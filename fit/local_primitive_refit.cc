@@ -3,35 +3,37 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "fit/primitive_jacobians.h"
+#include "fit/fittable_primitives.h"
+#include "model/primitive_kinds.h"
 
 namespace implicitfit {
 namespace {
 
-// Unit directions: the plane's normal (with its offset), the axis of the others.
+// Unit directions (the plane's normal with its offset, the axes), by field role.
 void Normalise(NodeType kind, double* p) {
-  if (kind == NodeType::kSphere) return;
-  double* v = kind == NodeType::kPlane ? p : p + 3;
+  const std::vector<ParameterField>& fields = ParameterFieldsOf(kind);
+  int dir = 0, offset = -1;
+  if (!FindFieldWithRole(fields, FieldRole::kDirection, &dir)) return;
+  FindFieldWithRole(fields, FieldRole::kPlaneOffset, &offset);
+  double* v = p + dir;
   const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   if (!(n > 0)) return;
   for (int k = 0; k < 3; ++k) v[k] /= n;
-  if (kind == NodeType::kPlane) p[3] /= n;
+  if (offset >= 0) p[offset] /= n;
 }
 
-// Keeps radii positive and the cone angle inside (0, pi/2).
+// Keeps positive lengths (radii) positive and angles (the cone's) inside (0, pi/2).
 bool Admissible(NodeType kind, const double* p) {
-  switch (kind) {
-    case NodeType::kSphere:
-      return p[3] > 0;
-    case NodeType::kCylinder:
-      return p[6] > 0;
-    case NodeType::kCone:
-      return p[6] > 1e-4 && p[6] < M_PI / 2 - 1e-4;
-    case NodeType::kTorus:
-      return p[6] > 0 && p[7] > 0;
-    default:
-      return true;
+  int k = 0;
+  for (const ParameterField& f : ParameterFieldsOf(kind)) {
+    for (int j = 0; j < f.size; ++j) {
+      if (f.role == FieldRole::kPositiveLength && !(p[k + j] > 0)) return false;
+      if (f.role == FieldRole::kAngle && !(p[k + j] > 1e-4 && p[k + j] < M_PI / 2 - 1e-4))
+        return false;
+    }
+    k += f.size;
   }
+  return true;
 }
 
 template <typename E>
@@ -103,21 +105,9 @@ double Refit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
 double RefitPrimitiveLocally(NodeType kind, const std::vector<Eigen::Vector3d>& points,
                              const std::vector<int>& indices, std::vector<double>* params,
                              int iterations) {
-  if (indices.size() < 8) return -1.0;
-  switch (kind) {
-    case NodeType::kPlane:
-      return Refit<PlaneEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kSphere:
-      return Refit<SphereEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kCylinder:
-      return Refit<CylinderEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kCone:
-      return Refit<ConeEvaluator>(kind, points, indices, params, iterations);
-    case NodeType::kTorus:
-      return Refit<TorusEvaluator>(kind, points, indices, params, iterations);
-    default:
-      return -1.0;
-  }
+  if (indices.size() < 8 || !FindFittablePrimitive(kind)) return -1.0;
+  return VisitFittablePrimitive(
+      kind, [&](auto e) { return Refit<decltype(e)>(kind, points, indices, params, iterations); });
 }
 
 }  // namespace implicitfit

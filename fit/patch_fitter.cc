@@ -293,10 +293,19 @@ bool PatchFitOptions::IsValid(std::string* error) const {
     if (error) *error = "degree must be 2, 3 or 4 for fitting";
     return false;
   }
+  if (!(normal_weight >= 0.0) || !std::isfinite(normal_weight)) {
+    if (error) *error = "normal_weight must be a finite number >= 0";
+    return false;
+  }
+  if (max_iterations < 1) {
+    if (error) *error = "max_iterations must be >= 1";
+    return false;
+  }
   if (convex && !constraints.empty()) {
     if (error)
       *error =
-          "--through-vertex, --vertex-normal and --through-edge cannot be combined with --convex";
+          "shape constraints (through a vertex, a vertex normal, through an edge) cannot be "
+          "combined with the convexity constraint";
     return false;
   }
   if (!constraints.empty()) {
@@ -335,6 +344,9 @@ PatchFitResult FitBernsteinPatch(const std::vector<Vec>& points, const std::vect
                                  const PatchFitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PatchFitResult result;
+  result.points = points.size();
+  result.degree = options.degree;
+  result.convex_constraint = options.convex;
   std::string error;
   if (!options.IsValid(&error)) {
     result.message = error;

@@ -26,10 +26,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "fit/fit_termination.h"
+#include "fit/fit_summary.h"
 #include "fit/patch_shape_constraints.h"
 #include "model/bernstein_patch.h"
 #include "model/model.h"
@@ -46,16 +47,17 @@ struct PatchFitOptions {
   // Guo §3 shape control (fit/patch_shape_constraints.h): exact linear equalities, not
   // combined with `convex` (IsValid refuses the pair).
   PatchShapeConstraints constraints;
+  // False (with a reason) for a degree outside 2..4, shape constraints with `convex`,
+  // conflicting constraints, a negative or non-finite weight or fewer than 1 iteration.
   bool IsValid(std::string* error) const;
 };
 
-struct PatchFitResult {
-  bool success = false;
-  std::string message;  // "converged", "no convergence within ...", or why it failed
-  // How the last solve ended: NO_CONVERGENCE (the iteration limit came first) is a usable,
-  // successful result that is not converged; FAILURE makes success false.
-  FitTermination termination = FitTermination::kFailure;
+// message: "converged", "no convergence within ...", or why it failed. termination: how the
+// last solve ended: NO_CONVERGENCE (the iteration limit came first) is a usable, successful
+// result that is not converged; FAILURE makes success false.
+struct PatchFitResult : FitSummary {
   int degree = 0;
+  bool convex_constraint = false;  // options.convex
   Tetrahedron tetrahedron;
   std::vector<double> control_points;
   double rms = 0.0;                   // RMS of f/|grad f| over all points
@@ -65,8 +67,11 @@ struct PatchFitResult {
   double unconstrained_rms = -1.0;    // --convex: RMS of the same fit without the constraint
   double min_eigenvalue = 0.0;        // certificate margin (smallest A^mu eigenvalue)
   bool certified_convex = false;
-  double seconds = 0.0;
   Model ToModel() const;
+  // "points N  rms ...  certified convex ...  s" (one line).
+  std::string BriefReport() const;
+  // The report of fit/fit_report.h; `normals` says where the normals came from.
+  nlohmann::json ToJson(const std::string& normals) const;
 };
 
 PatchFitResult FitBernsteinPatch(const std::vector<Eigen::Vector3d>& points,

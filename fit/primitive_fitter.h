@@ -27,10 +27,12 @@
 
 #include <Eigen/Core>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "fit/estimator.h"
+#include "fit/fit_summary.h"
 #include "fit/least_squares_fit.h"
 #include "fit/minimum_zone.h"
 #include "model/model.h"
@@ -62,9 +64,12 @@ struct PrimitiveFitOptions {
   bool IsValid(std::string* error) const;
 };
 
-struct PrimitiveFitResult {
-  bool success = false;
-  std::string message;                      // why it failed, or the solver's termination
+// termination: CONVERGENCE when the last round's solve converged on a stable inlier set;
+// NO_CONVERGENCE when the solve hit its iteration limit (success false) or max_rounds ran out
+// before the inlier set was stable (success true: the result of the last round is usable);
+// FAILURE otherwise.
+struct PrimitiveFitResult : FitSummary {
+  NodeType kind = NodeType::kSphere;        // the kind fitted (options.kind)
   std::vector<double> parameters;           // flat layout of the model evaluator (model/*.h)
   std::vector<double> standard_deviations;  // same layout; empty when not computed
   std::vector<int> inliers;                 // indices into the input cloud
@@ -73,7 +78,6 @@ struct PrimitiveFitResult {
   double mean_normal_angle_deg = -1.0;      // mean angle between grad f and the inliers' normals
   int iterations = 0;                       // Ceres iterations, all rounds
   int rounds = 0;
-  double seconds = 0.0;
   bool points_only = false;                  // hypotheses from points alone (no normals given)
   Estimator estimator = Estimator::kRobust;  // which estimator produced `parameters`
   FormFigures form;                          // every point's distances to the result
@@ -82,6 +86,10 @@ struct PrimitiveFitResult {
 
   // The fitted primitive as a one-node model.
   Model ToModel(NodeType kind) const;
+  // "points N  inliers M  rms ...  s" and "estimator ... form error ..." (two lines).
+  std::string BriefReport() const;
+  // The report of fit/fit_report.h; `normals` says where the normals came from.
+  nlohmann::json ToJson(const std::string& normals) const;
 };
 
 // points: the cloud; normals: empty or one per point.
@@ -89,7 +97,9 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
                                 const std::vector<Eigen::Vector3d>& normals,
                                 const PrimitiveFitOptions& options);
 
-// "plane" -> kPlane ... for the five fittable kinds; false otherwise.
+// "plane" -> kPlane ... for the fittable kinds (fit/fittable_primitives.h); false otherwise.
 bool FittableKindFromName(const std::string& name, NodeType* kind);
+// Their names, "plane, sphere, cylinder, cone, torus", for messages.
+std::string FittableKindNames();
 
 }  // namespace implicitfit

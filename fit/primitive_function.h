@@ -1,6 +1,7 @@
-// f(x) and grad_x f(x) of one primitive of the five fittable kinds (plane, sphere, cylinder,
-// cone, torus), chosen at run time, through the closed forms of fit/primitive_jacobians.h: the
-// parameter-only quantities are computed once at construction, so one object serves many points.
+// f(x) and grad_x f(x) of one primitive of the fittable kinds (fit/fittable_primitives.h: plane,
+// sphere, cylinder, cone, torus), chosen at run time, through the closed forms of
+// fit/primitive_jacobians.h: the parameter-only quantities are computed once at construction, so
+// one object serves many points.
 #pragma once
 
 #include <Eigen/Core>
@@ -8,14 +9,14 @@
 #include <variant>
 #include <vector>
 
-#include "fit/primitive_jacobians.h"
+#include "fit/fittable_primitives.h"
 #include "model/model.h"
 
 namespace implicitfit {
 
 class PrimitiveFunction {
  public:
-  // Throws std::invalid_argument for a kind that is not one of the five.
+  // Throws std::invalid_argument for a kind that is not fittable.
   PrimitiveFunction(NodeType kind, const std::vector<double>& params)
       : f_(Make(kind, params.data())) {}
 
@@ -26,25 +27,17 @@ class PrimitiveFunction {
   }
 
  private:
-  using Variant =
-      std::variant<PrimitiveDistance<PlaneEvaluator>, PrimitiveDistance<SphereEvaluator>,
-                   PrimitiveDistance<CylinderEvaluator>, PrimitiveDistance<ConeEvaluator>,
-                   PrimitiveDistance<TorusEvaluator>>;
+  template <typename Tuple>
+  struct DistanceVariant;
+  template <typename... E>
+  struct DistanceVariant<std::tuple<E...>> {
+    using type = std::variant<PrimitiveDistance<E>...>;
+  };
+  // One alternative per fittable kind (fit/fittable_primitives.h).
+  using Variant = typename DistanceVariant<FittableEvaluators>::type;
   static Variant Make(NodeType kind, const double* p) {
-    switch (kind) {
-      case NodeType::kPlane:
-        return PrimitiveDistance<PlaneEvaluator>(p);
-      case NodeType::kSphere:
-        return PrimitiveDistance<SphereEvaluator>(p);
-      case NodeType::kCylinder:
-        return PrimitiveDistance<CylinderEvaluator>(p);
-      case NodeType::kCone:
-        return PrimitiveDistance<ConeEvaluator>(p);
-      case NodeType::kTorus:
-        return PrimitiveDistance<TorusEvaluator>(p);
-      default:
-        throw std::invalid_argument("PrimitiveFunction: not a fittable primitive kind");
-    }
+    return VisitFittablePrimitive(
+        kind, [p](auto e) -> Variant { return PrimitiveDistance<decltype(e)>(p); });
   }
   Variant f_;
 };

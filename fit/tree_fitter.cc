@@ -12,6 +12,18 @@
 
 namespace implicitfit {
 
+bool TreeFitOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& e) {
+    if (error) *error = e;
+    return false;
+  };
+  if (!(normal_weight >= 0.0) || !std::isfinite(normal_weight))
+    return fail("normal_weight must be a finite number >= 0");
+  if (max_iterations < 1) return fail("max_iterations must be >= 1");
+  if (num_threads < 0) return fail("num_threads must be >= 0 (0: one per core)");
+  return true;
+}
+
 TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector3d>& points,
                            const std::vector<Eigen::Vector3d>& normals,
                            const TreeFitOptions& options) {
@@ -19,6 +31,12 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   TreeFitResult result;
   result.model = initial;
   const size_t n_points = points.size();
+  result.points = n_points;
+  std::string error;
+  if (!options.IsValid(&error)) {
+    result.message = error;
+    return result;
+  }
   if (n_points < 5) {
     result.message = "too few points: " + std::to_string(n_points);
     return result;
@@ -99,6 +117,10 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   if (has_normals && result.inliers) result.mean_normal_angle_deg = angles / result.inliers;
   result.success = summary.IsSolutionUsable() && summary.termination_type == ceres::CONVERGENCE;
   result.message = result.success ? "converged" : "solver did not converge: " + summary.message;
+  result.termination = result.success ? FitTermination::kConverged
+                       : summary.termination_type == ceres::NO_CONVERGENCE
+                           ? FitTermination::kNoConvergence
+                           : FitTermination::kFailure;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

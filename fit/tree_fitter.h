@@ -10,9 +10,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "fit/fit_summary.h"
 #include "model/model.h"
 
 namespace implicitfit {
@@ -21,18 +23,24 @@ struct TreeFitOptions {
   double normal_weight = 0.1;  // w of the normal residuals (units of distance per unit vector)
   int max_iterations = 200;    // Ceres iterations per pass
   int num_threads = 0;         // 0 = hardware concurrency
+  // False (with a reason) for a negative or non-finite weight, fewer than 1 iteration or a
+  // negative thread count.
+  bool IsValid(std::string* error) const;
 };
 
-struct TreeFitResult {
-  bool success = false;
-  std::string message;
+// termination: CONVERGENCE, NO_CONVERGENCE (the second pass hit max_iterations; success false)
+// or FAILURE (bad options, too few points, nothing to fit, a failed solve).
+struct TreeFitResult : FitSummary {
   Model model;         // the fitted tree (same structure as the initial one)
   double rms = 0.0;    // RMS geometric distance of the inliers (|r_0| < 3 sigma)
   double sigma = 0.0;  // robust noise scale
   int inliers = 0;
   double mean_normal_angle_deg = -1.0;
   int iterations = 0;
-  double seconds = 0.0;
+  // "points N  inliers M  rms ...  s" (one line).
+  std::string BriefReport() const;
+  // The report of fit/fit_report.h; `normals` says where the normals came from.
+  nlohmann::json ToJson(const std::string& normals) const;
 };
 
 TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector3d>& points,

@@ -8,6 +8,31 @@
 
 namespace implicitfit {
 
+namespace {
+
+// The block kind of a field from its role (model/model.h FieldRole).
+TreeParameters::Kind KindOfRole(FieldRole role) {
+  using Kind = TreeParameters::Kind;
+  switch (role) {
+    case FieldRole::kDirection:
+      return Kind::kDirection;
+    case FieldRole::kPositiveLength:
+      return Kind::kPositive;
+    case FieldRole::kAngle:
+      return Kind::kAngle;
+    case FieldRole::kRotation:
+      return Kind::kQuaternion;
+    case FieldRole::kPlain:
+    case FieldRole::kPosition:
+    case FieldRole::kAxisPoint:
+    case FieldRole::kPlaneOffset:
+      return Kind::kPlain;
+  }
+  return Kind::kPlain;
+}
+
+}  // namespace
+
 TreeParameters::TreeParameters(const Model& model) {
   const std::vector<double>& p = model.parameters();
   entries_.resize(p.size());
@@ -21,14 +46,7 @@ TreeParameters::TreeParameters(const Model& model) {
     const int delta_flat = node.first_parameter;  // operators: [delta, epsilon]
     for (const ParameterField& field : ParameterFieldsOf(node)) {
       const std::string name = field.name;
-      Kind kind = Kind::kPlain;
-      if (name == "axis" || name == "normal") kind = Kind::kDirection;
-      if (name == "radius" || name == "major_radius" || name == "minor_radius" || name == "radii")
-        kind = Kind::kPositive;
-      if (name == "half_angle") kind = Kind::kAngle;
-      if (node.type == NodeType::kBox && name == "axes") kind = Kind::kQuaternion;
-      if (name == "half_sizes") kind = Kind::kPositive;
-      if (node.type == NodeType::kBlobs && name == "widths") kind = Kind::kPositive;
+      Kind kind = KindOfRole(field.role);
       const bool structural = node.type == NodeType::kBlobs && name == "threshold";
       if (node.type == NodeType::kMorph && name == "t") kind = Kind::kUnitLogit;
       if (name == "delta") kind = Kind::kDeltaLog;

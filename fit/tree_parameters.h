@@ -1,13 +1,15 @@
 // The free parameters of a model tree as Ceres parameter blocks, and the map back to the tree's
 // flat parameter vector (model/model.h). One block per free field of every node:
-//   axis / normal                       SphereManifold<3> (unit vectors by construction)
-//   radius, major_radius, minor_radius,
-//   radii                               lower bound 0
-//   half_angle                          bounds (0, pi/2)
-//   box axes (a quaternion w, x, y, z)  ceres::QuaternionManifold
-//   box half_sizes                      lower bound 0
+// By the field's role (model/model.h FieldRole, model/primitive_kinds.h):
+//   directions (axis, normal)           SphereManifold<3> (unit vectors by construction)
+//   positive lengths (radius, radii,
+//   major/minor_radius, half_sizes,
+//   blobs widths)                       lower bound 0
+//   angles (half_angle)                 bounds (0, pi/2)
+//   rotations (box axes, a quaternion
+//   w, x, y, z)                         ceres::QuaternionManifold
+// By the node type:
 //   morph t                             t = 1 / (1 + exp(-b)), so 0 < t < 1 for every b
-//   blobs widths                        lower bound 0
 //   blobs threshold                     never fitted (it fixes the scale of f)
 //   partition epsilon                   eps = (w_min / 2) / (1 + exp(-b)), w_min the narrowest
 //                                       finite cell, so every iterate keeps cells >= 2 eps
@@ -52,7 +54,7 @@ class TreeParameters {
   // Returns how many restarted.
   int RestartCollapsedEpsilons(double min_ratio);
 
- private:
+  // How a block is parameterised (from its field's role, or the node type's own rules).
   enum class Kind {
     kPlain,
     kDirection,
@@ -64,6 +66,8 @@ class TreeParameters {
     kUnitLogit,
     kLog
   };
+
+ private:
   struct Entry {                 // one flat parameter
     int block = -1, offset = 0;  // -1: fixed
     double fixed_value = 0.0;

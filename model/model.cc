@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "model/dual3.h"
+#include "model/primitive_kinds.h"
 
 namespace implicitfit {
 namespace {
@@ -14,32 +15,34 @@ struct TypeInfo {
   std::vector<ParameterField> fields;
 };
 
+// Primitives from their table (model/primitive_kinds.h), then every other node type.
 const std::vector<TypeInfo>& Types() {
-  static const std::vector<TypeInfo> types = {
-      {NodeType::kPlane, "plane", {{"normal", 3}, {"offset", 1}}},
-      {NodeType::kSphere, "sphere", {{"center", 3}, {"radius", 1}}},
-      {NodeType::kCylinder, "cylinder", {{"point", 3}, {"axis", 3}, {"radius", 1}}},
-      {NodeType::kCone, "cone", {{"apex", 3}, {"axis", 3}, {"half_angle", 1}}},
-      {NodeType::kTorus,
-       "torus",
-       {{"center", 3}, {"axis", 3}, {"major_radius", 1}, {"minor_radius", 1}}},
-      {NodeType::kEllipsoid, "ellipsoid", {{"center", 3}, {"radii", 3}, {"axes", 6}}},
-      {NodeType::kQuadric, "quadric", {{"coefficients", 10}}},
-      {NodeType::kBernsteinPatch, "bernstein_patch", {{"control_points", 0}}},
-      {NodeType::kUnion, "union", {{"delta", 1}, {"epsilon", 1}}},
-      {NodeType::kIntersection, "intersection", {{"delta", 1}, {"epsilon", 1}}},
-      {NodeType::kDifference, "difference", {{"delta", 1}, {"epsilon", 1}}},
-      {NodeType::kBox, "box", {{"center", 3}, {"axes", 4}, {"half_sizes", 3}}},
-      {NodeType::kComplement, "complement", {}},
-      {NodeType::kMorph, "morph", {{"t", 1}}},
-      {NodeType::kParaboloid, "paraboloid", {{"vertex", 3}, {"axis", 3}, {"curvature", 1}}},
-      {NodeType::kBlobs,
-       "blobs",
-       {{"centers", -3}, {"weights", -1}, {"widths", -1}, {"threshold", 1}}},
-      {NodeType::kSkeletonOffset, "skeleton_offset", {{"skeleton", -3}, {"radius", 1}}},
-      {NodeType::kPartition, "partition", {{"epsilon", 1}}},
-      {NodeType::kBernsteinMesh, "bernstein_mesh", {{"control_points", 0}}},
-  };
+  static const std::vector<TypeInfo> types = [] {
+    std::vector<TypeInfo> t;
+    for (const PrimitiveKind& kind : PrimitiveKinds())
+      t.push_back({kind.type, kind.name, kind.fields});
+    const std::vector<TypeInfo> others = {
+        {NodeType::kBernsteinPatch, "bernstein_patch", {{"control_points", 0}}},
+        {NodeType::kUnion, "union", {{"delta", 1}, {"epsilon", 1}}},
+        {NodeType::kIntersection, "intersection", {{"delta", 1}, {"epsilon", 1}}},
+        {NodeType::kDifference, "difference", {{"delta", 1}, {"epsilon", 1}}},
+        {NodeType::kComplement, "complement", {}},
+        {NodeType::kMorph, "morph", {{"t", 1}}},
+        {NodeType::kBlobs,
+         "blobs",
+         {{"centers", -3, FieldRole::kPosition},
+          {"weights", -1},
+          {"widths", -1, FieldRole::kPositiveLength},
+          {"threshold", 1}}},
+        {NodeType::kSkeletonOffset,
+         "skeleton_offset",
+         {{"skeleton", -3, FieldRole::kPosition}, {"radius", 1, FieldRole::kPositiveLength}}},
+        {NodeType::kPartition, "partition", {{"epsilon", 1}}},
+        {NodeType::kBernsteinMesh, "bernstein_mesh", {{"control_points", 0}}},
+    };
+    t.insert(t.end(), others.begin(), others.end());
+    return t;
+  }();
   return types;
 }
 

@@ -71,9 +71,24 @@ bool IsComposite(NodeType type);
 // per-node length (bernstein_patch: control_points); ParameterFieldsOf(node) gives it. A
 // negative size -s means s per element (blobs: centers -3, weights -1; skeleton_offset:
 // skeleton -3 per point), ParameterFieldsOf(node) multiplies by the node's element count.
+// What a field means, so that code common to every primitive (JSON checks, recentring,
+// fitting bounds and manifolds, degrees of freedom) reads it from the table instead of from
+// the field's name (model/primitive_kinds.h):
+enum class FieldRole {
+  kPlain,           // any finite numbers
+  kPosition,        // a point: moves with the model when it is translated
+  kAxisPoint,       // a point on an axis line: moves with the model; 2 degrees of freedom (it
+                    // slides along the axis: the fitter keeps the foot of the cloud's centroid)
+  kDirection,       // a non-zero 3-vector that means only its direction (unit in fits)
+  kPlaneOffset,     // d of n . x = d (n: the node's direction field): moves by n . shift
+  kPositiveLength,  // every number > 0
+  kAngle,           // a half angle in (0, pi/2) radians
+  kRotation,        // a unit quaternion (w, x, y, z): 3 degrees of freedom
+};
 struct ParameterField {
   const char* name;
   int size;
+  FieldRole role = FieldRole::kPlain;
 };
 const std::vector<ParameterField>& ParameterFieldsOf(NodeType type);
 // Number of parameters a primitive or operator node owns (0 for bernstein_patch: per node).

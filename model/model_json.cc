@@ -5,6 +5,7 @@
 #include <set>
 
 #include "model/bernstein_mesh_json.h"
+#include "model/primitive_kinds.h"
 
 namespace implicitfit {
 namespace {
@@ -103,91 +104,78 @@ std::vector<double> BoxQuaternion(const json& node, const std::string& path) {
   return {q.w(), q.x(), q.y(), q.z()};
 }
 
+// A primitive's parameters from its fields (model/primitive_kinds.h), each checked by its
+// role: a direction must be non-zero, a positive length > 0, an angle in (0, pi/2).
+std::vector<double> FieldsByRole(const PrimitiveKind& kind, const json& node,
+                                 const std::string& path) {
+  std::vector<double> p;
+  for (const ParameterField& f : kind.fields) {
+    const size_t begin = p.size();
+    const std::string where = path + "." + f.name;
+    if (f.size == 1) {
+      p.push_back(Number(node, f.name, path));
+    } else {
+      const std::vector<double> v = Vector(node, f.name, f.size, path);
+      p.insert(p.end(), v.begin(), v.end());
+    }
+    switch (f.role) {
+      case FieldRole::kDirection:
+        RequireNonZero(p, begin, where);
+        break;
+      case FieldRole::kPositiveLength:
+        for (int i = 0; i < f.size; ++i)
+          RequirePositive(p[begin + i],
+                          f.size == 1 ? where : where + "[" + std::to_string(i) + "]");
+        break;
+      case FieldRole::kAngle:
+        if (!(p[begin] > 0.0 && p[begin] < M_PI / 2)) Fail(where, "must be in (0, pi/2) radians");
+        break;
+      case FieldRole::kPlain:
+      case FieldRole::kPosition:
+      case FieldRole::kAxisPoint:
+      case FieldRole::kPlaneOffset:
+      case FieldRole::kRotation:
+        break;
+    }
+  }
+  return p;
+}
+
+// Primitives whose JSON form differs from their parameter layout are read here; every other
+// primitive by FieldsByRole.
 std::vector<double> PrimitiveParameters(NodeType type, const json& node, const std::string& path) {
+  const PrimitiveKind* kind = FindPrimitiveKind(type);
+  if (!kind) Fail(path, "internal: not a primitive");
   std::vector<double> p;
   auto append = [&p](const std::vector<double>& v) { p.insert(p.end(), v.begin(), v.end()); };
-  switch (type) {
-    case NodeType::kPlane:
-      append(Vector(node, "normal", 3, path));
-      RequireNonZero(p, 0, path + ".normal");
-      if (node.contains("point")) {  // LP-2 input form: through a point; stored unit normal, offset
-        if (node.contains("offset")) Fail(path + ".point", "give either point or offset, not both");
-        const std::vector<double> x = Vector(node, "point", 3, path);
-        const double n = Norm(p);
-        for (int i = 0; i < 3; ++i) p[i] /= n;
-        p.push_back(p[0] * x[0] + p[1] * x[1] + p[2] * x[2]);
-        break;
-      }
-      p.push_back(Number(node, "offset", path));
-      break;
-    case NodeType::kSphere:
-      append(Vector(node, "center", 3, path));
-      p.push_back(Number(node, "radius", path));
-      RequirePositive(p[3], path + ".radius");
-      break;
-    case NodeType::kCylinder:
-      append(Vector(node, "point", 3, path));
-      append(Vector(node, "axis", 3, path));
-      RequireNonZero(p, 3, path + ".axis");
-      p.push_back(Number(node, "radius", path));
-      RequirePositive(p[6], path + ".radius");
-      break;
-    case NodeType::kCone:
-      append(Vector(node, "apex", 3, path));
-      append(Vector(node, "axis", 3, path));
-      RequireNonZero(p, 3, path + ".axis");
-      p.push_back(Number(node, "half_angle", path));
-      if (!(p[6] > 0.0 && p[6] < M_PI / 2))
-        Fail(path + ".half_angle", "must be in (0, pi/2) radians");
-      break;
-    case NodeType::kTorus:
-      append(Vector(node, "center", 3, path));
-      append(Vector(node, "axis", 3, path));
-      RequireNonZero(p, 3, path + ".axis");
-      p.push_back(Number(node, "major_radius", path));
-      p.push_back(Number(node, "minor_radius", path));
-      RequirePositive(p[6], path + ".major_radius");
-      RequirePositive(p[7], path + ".minor_radius");
-      break;
-    case NodeType::kEllipsoid:
-      append(Vector(node, "center", 3, path));
-      append(Vector(node, "radii", 3, path));
-      for (int i = 0; i < 3; ++i)
-        RequirePositive(p[3 + i], path + ".radii[" + std::to_string(i) + "]");
-      append(EllipsoidAxes(node, path));
-      break;
-    case NodeType::kQuadric: {
-      append(Vector(node, "coefficients", 10, path));
+  if (type == NodeType::kPlane && node.contains("point")) {
+    // LP-2 input form: through a point; stored unit normal, offset
+    append(Vector(node, "normal", 3, path));
+    RequireNonZero(p, 0, path + ".normal");
+    if (node.contains("offset")) Fail(path + ".point", "give either point or offset, not both");
+    const std::vector<double> x = Vector(node, "point", 3, path);
+    const double n = Norm(p);
+    for (int i = 0; i < 3; ++i) p[i] /= n;
+    p.push_back(p[0] * x[0] + p[1] * x[1] + p[2] * x[2]);
+  } else if (type == NodeType::kEllipsoid) {  // "axes": 2 or 3 rows, stored as 2
+    append(Vector(node, "center", 3, path));
+    append(Vector(node, "radii", 3, path));
+    for (int i = 0; i < 3; ++i)
+      RequirePositive(p[3 + i], path + ".radii[" + std::to_string(i) + "]");
+    append(EllipsoidAxes(node, path));
+  } else if (type == NodeType::kBox) {  // "axes": rows, stored as a quaternion
+    append(Vector(node, "center", 3, path));
+    append(BoxQuaternion(node, path));
+    append(Vector(node, "half_sizes", 3, path));
+    for (int i = 0; i < 3; ++i)
+      RequirePositive(p[7 + i], path + ".half_sizes[" + std::to_string(i) + "]");
+  } else {
+    p = FieldsByRole(*kind, node, path);
+    if (type == NodeType::kQuadric) {
       double largest = 0.0;
       for (double c : p) largest = std::max(largest, std::abs(c));
       if (largest == 0.0) Fail(path + ".coefficients", "must not all be zero");
-      break;
     }
-    case NodeType::kBox: {
-      append(Vector(node, "center", 3, path));
-      append(BoxQuaternion(node, path));
-      append(Vector(node, "half_sizes", 3, path));
-      for (int i = 0; i < 3; ++i)
-        RequirePositive(p[7 + i], path + ".half_sizes[" + std::to_string(i) + "]");
-      break;
-    }
-    case NodeType::kParaboloid:
-      append(Vector(node, "vertex", 3, path));
-      append(Vector(node, "axis", 3, path));
-      RequireNonZero(p, 3, path + ".axis");
-      p.push_back(Number(node, "curvature", path));
-      break;
-    case NodeType::kBernsteinPatch:
-    case NodeType::kUnion:
-    case NodeType::kIntersection:
-    case NodeType::kDifference:
-    case NodeType::kComplement:
-    case NodeType::kMorph:
-    case NodeType::kBlobs:
-    case NodeType::kSkeletonOffset:
-    case NodeType::kPartition:
-    case NodeType::kBernsteinMesh:
-      Fail(path, "internal: not a primitive");
   }
   return p;
 }

@@ -94,9 +94,8 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
     return PatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))
-    throw py::value_error(
-        "kind " + kind +
-        ": unknown (plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch)");
+    throw py::value_error("kind " + kind + ": unknown (" + FittableKindNames() +
+                          ", quadric-patch, cubic-patch)");
   options.seed = SeedFrom(seed);
   if (threshold) {
     if (!(*threshold > 0.0) || !std::isfinite(*threshold))
