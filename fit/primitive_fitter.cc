@@ -138,6 +138,8 @@ struct Hypothesizer {
       case NodeType::kSkeletonOffset:
       case NodeType::kPartition:
       case NodeType::kBernsteinMesh:
+      case NodeType::kPartitionSequence:
+      case NodeType::kColemanFeatures:
         return false;  // no minimal-sample hypothesis (PrimitiveFitOptions::IsValid refuses them)
     }
     return false;
@@ -579,6 +581,8 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     case NodeType::kSkeletonOffset:
     case NodeType::kPartition:
     case NodeType::kBernsteinMesh:
+    case NodeType::kPartitionSequence:
+    case NodeType::kColemanFeatures:
       result.message = std::string("unsupported kind: ") + NodeTypeName(options.kind);
       return result;
   }
