@@ -24,7 +24,7 @@ std::string SampleBox(const std::string& name) {
        "half_sizes": [0.5, 0.4, 0.3]}})");
   const auto s =
       RunCommand(kCli + " sample " + dir +
-                 "/truth.json --count 3000 --noise 0.002 --seed 2 --out " + dir + "/cloud.xyz");
+                 "/truth.json --count 1500 --noise 0.002 --seed 2 --out " + dir + "/cloud.xyz");
   EXPECT_EQ(s.exit_code, 0) << s.err;
   return dir;
 }
@@ -94,7 +94,7 @@ TEST(ShapeFitCommand, BoxReportGivesAStandardDeviationPerParameter) {
   ASSERT_EQ(r["standard_deviations"].size(), r["parameters"].size());
   for (const std::string name : {"root.center[0]", "root.half_sizes[2]"}) {
     const double sd = r["standard_deviations"][name].get<double>();
-    // 3000 points, sigma 0.002: a centre coordinate is known to about 0.002 / sqrt(1000).
+    // 1500 points, sigma 0.002: a centre coordinate is known to about 0.002 / sqrt(500).
     EXPECT_GT(sd, 1e-6) << name;
     EXPECT_LT(sd, 5e-4) << name;
   }

@@ -48,8 +48,10 @@ struct Group {
   void Print() const {
     std::printf(
         "  %-22s RMS error %.3g  CR spread %.3g  ratio %.2f  reported sd %.3g (%.2f)  "
-        "bias score %.2f\n",
+        "bias score %.2f",
         name, Rms(), Crb(), Rms() / Crb(), Sd(), Sd() / Crb(), BiasScore());
+    if (sum_error.size() == 1) std::printf("  mean error %+.3g", sum_error[0] / n);
+    std::printf("\n");
   }
 };
 
@@ -101,7 +103,7 @@ TEST(ShapeKindsOverSeeds, BoxCentreAndSizesWithinCramerRao) {
                    {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(), h.x(), h.y(), h.z()});
     return m;
   };
-  Group centre{"box centre"}, sizes{"box half sizes"};
+  Group centre{"box centre", 0, 0, 0, {}, 0}, sizes{"box half sizes", 0, 0, 0, {}, 0};
   for (int seed = 1; seed <= kSeeds; ++seed) {
     const SampledCloud s = SampleModel(box(c, q, h), Options(100 + seed));
     const TreeFitResult r =
@@ -126,7 +128,7 @@ TEST(ShapeKindsOverSeeds, BoxCentreAndSizesWithinCramerRao) {
   EXPECT_NEAR(sizes.Sd() / sizes.Crb(), 1.0, 0.25) << "reported sd vs Cramer-Rao";
 }
 
-TEST(ShapeKindsOverSeeds, CapsuleEndsAndRadiusWithinCramerRao) {
+void CapsuleOverSeeds(double outlier_fraction) {
   const Vec a(-0.5, 0.1, 0.0), b(0.6, -0.2, 0.3);
   const double radius = 0.3;
   auto capsule = [](const Vec& p, const Vec& q, double r) {
@@ -134,9 +136,12 @@ TEST(ShapeKindsOverSeeds, CapsuleEndsAndRadiusWithinCramerRao) {
     m.AddSkeletonOffset(SkeletonKind::kSegments, {p.x(), p.y(), p.z(), q.x(), q.y(), q.z()}, r);
     return m;
   };
-  Group ends{"capsule end points"}, rad{"capsule radius"};
+  std::printf("  capsule, %.0f%% outliers:\n", 100 * outlier_fraction);
+  Group ends{"capsule end points", 0, 0, 0, {}, 0}, rad{"capsule radius", 0, 0, 0, {}, 0};
   for (int seed = 1; seed <= kSeeds; ++seed) {
-    const SampledCloud s = SampleModel(capsule(a, b, radius), Options(200 + seed));
+    SampleOptions so = Options(200 + seed);
+    so.outlier_fraction = outlier_fraction;
+    const SampledCloud s = SampleModel(capsule(a, b, radius), so);
     const TreeFitResult r =
         FitModelTree(capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
                      s.cloud.points, s.cloud.normals, TreeFitOptions{});
@@ -157,6 +162,14 @@ TEST(ShapeKindsOverSeeds, CapsuleEndsAndRadiusWithinCramerRao) {
   EXPECT_LT(ends.Rms(), kMultiple * ends.Crb());
   EXPECT_LT(rad.Rms(), kMultiple * rad.Crb());
   EXPECT_NEAR(rad.Sd() / rad.Crb(), 1.0, 0.25) << "reported sd vs Cramer-Rao";
+}
+
+// With 20% outliers (the recovery tests' protocol) and without: the Cauchy loss gives far
+// outliers a small influence (2 sigma)^2 / r each, and the outliers of a box around the capsule
+// lie mostly outside it, which pushes the radius out by a fraction of a spread.
+TEST(ShapeKindsOverSeeds, CapsuleEndsAndRadiusWithinCramerRao) { CapsuleOverSeeds(0.2); }
+TEST(ShapeKindsOverSeeds, CapsuleEndsAndRadiusWithinCramerRaoWithoutOutliers) {
+  CapsuleOverSeeds(0.0);
 }
 
 }  // namespace
