@@ -73,6 +73,24 @@ TEST(PartitionFitCommand, FitsAGridOfPlanesAndReportsDeviations) {
   EXPECT_TRUE(std::isfinite(eps_sd) && eps_sd > 0);
 }
 
+TEST(PartitionFitCommand, QuadricChildrenFitAnEllipsoidToTheNoise) {
+  const std::string dir = testsupport::ScratchDir("partition_quadric");
+  WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1, "root":
+      {"type": "ellipsoid", "center": [0, 0, 0], "radii": [1, 0.7, 0.5],
+       "axes": [[1, 0, 0], [0, 1, 0]]}})");
+  const auto s =
+      RunCommand(kCli + " sample " + dir +
+                 "/truth.json --count 3000 --noise 0.002 --seed 3 --out " + dir + "/cloud.xyz");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const auto f =
+      RunCommand(kCli + " fit " + dir + "/cloud.xyz --model partition --grid 2x1x1 " +
+                 "--child quadric --out " + dir + "/fit.json --report " + dir + "/report.json");
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_EQ(ReadJson(dir + "/fit.json")["root"]["children"][0]["type"], "quadric");
+  // Two quadric halves of one ellipsoid: the fit reaches the noise (sigma 0.002).
+  EXPECT_LT(ReadJson(dir + "/report.json")["rms_distance"].get<double>(), 0.003);
+}
+
 TEST(PartitionFitCommand, RefusesABadGridWithoutOutput) {
   const std::string dir = SampleBox("partition_bad");
   for (const std::string args :
