@@ -18,5 +18,6 @@ CommandAction AddBatchCommand(CLI::App& app);
 CommandAction AddMeshCommand(CLI::App& app);
 CommandAction AddReconstructCommand(CLI::App& app);
 CommandAction AddDetectCommand(CLI::App& app);
+CommandAction AddDesignCommand(CLI::App& app);
 
 }  // namespace implicitfit

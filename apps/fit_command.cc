@@ -33,6 +33,7 @@ struct FitArgs {
   int cells = 0;
   double cell = 0.0;
   int continuity = 1;
+  std::string grid, child = "plane";
 };
 
 }  // namespace
@@ -46,7 +47,7 @@ CommandAction AddFitCommand(CLI::App& app) {
   auto* model_opt =
       cmd->add_option("--model", a->kind,
                       "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, "
-                      "cubic-patch, box, paraboloid, capsule, patch-mesh");
+                      "cubic-patch, box, paraboloid, capsule, patch-mesh, partition");
   auto* init_opt = cmd->add_option("--init", a->init,
                                    "Fit every free parameter of this model tree (primitive "
                                    "parameters, delta and epsilon, control points)");
@@ -87,6 +88,13 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 (C0) or 1 (C1, default)")
       ->check(CLI::Range(0, 1))
       ->group("Bernstein patches");
+  cmd->add_option("--grid", a->grid,
+                  "partition: A x B x C cells at equal spacing over the cloud's box + 5%, e.g. "
+                  "3x3x2")
+      ->group("Soft partitions");
+  cmd->add_option("--child", a->child,
+                  "partition: the child of every cell, plane (default) or quadric")
+      ->group("Soft partitions");
   cmd->add_option("--through-vertex", a->through_vertices,
                   "Patch passes exactly through tetrahedron vertex I (1..4): b_{k e_I} = 0")
       ->check(CLI::Range(1, 4))
@@ -106,10 +114,15 @@ CommandAction AddFitCommand(CLI::App& app) {
     request.cells = a->cells;
     request.cell = a->cell;
     request.continuity = a->continuity;
+    request.grid = a->grid;
+    request.child = a->child;
+    if (a->kind != "partition" && !a->grid.empty())
+      throw InputError("--grid applies to --model partition");
     if (request.HasShapeConstraints() && !IsPatchKind(a->kind))
       throw InputError(
           "--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
           "and cubic-patch");
+    if (a->kind == "partition") return RunPartitionFit(request);
     if (IsMeshKind(a->kind)) return RunMeshFit(request);
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);

@@ -12,6 +12,7 @@
 #include "fit/fit_report.h"
 #include "fit/patch_fitter.h"
 #include "fit/shape_starts.h"
+#include "fit/tree_covariance.h"
 #include "fit/tree_fitter.h"
 #include "model/model_json.h"
 
@@ -101,6 +102,27 @@ int RunTreeFit(const ModelFitRequest& request) {
   return 0;
 }
 
+void AddTreeFitFigures(const TreeFitResult& r, const Model& start,
+                       const std::vector<Eigen::Vector3d>& points, const std::string& normals,
+                       nlohmann::json* report) {
+  report->update(r.ToJson(normals));
+  // Standard deviations at the optimum from the inliers (|f / |grad f|| < 3 sigma), as the
+  // primitives' (fit/tree_covariance.h).
+  std::vector<Eigen::Vector3d> inliers;
+  for (const Eigen::Vector3d& x : points) {
+    double f;
+    const double g = r.model.Gradient(x, &f).norm();
+    if (g > 0 && std::abs(f / g) < 3.0 * r.sigma) inliers.push_back(x);
+  }
+  const std::vector<double> sd = TreeStandardDeviations(r.model, inliers);
+  const std::vector<std::string> names = r.model.ParameterNames();
+  for (size_t i = 0; i < names.size(); ++i) {
+    (*report)["parameters"][names[i]] = r.model.parameters()[i];
+    (*report)["standard_deviations"][names[i]] = sd[i];
+    (*report)["start"][names[i]] = start.parameters()[i];
+  }
+}
+
 bool IsShapeKind(const std::string& kind) { return IsShapeStartKind(kind); }
 
 int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
@@ -117,9 +139,7 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
     return 1;
   }
   const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, TreeFitOptions{});
-  report.update(r.ToJson(normals));
-  const std::vector<std::string> names = start.model.ParameterNames();
-  for (size_t i = 0; i < names.size(); ++i) report["start"][names[i]] = start.model.parameters()[i];
+  AddTreeFitFigures(r, start.model, cloud.points, normals, &report);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
     std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind

@@ -4,6 +4,8 @@
 //                          a Bernstein patch (fit/patch_fitter.h)
 //   --model box | paraboloid | capsule
 //                          a robust start (fit/shape_starts.h), then the tree fitter
+//   --model partition --grid AxBxC [--child plane|quadric]
+//                          the sparse linear start (fit/partition_start.h), then the tree fitter
 // Each reads the cloud, fits, writes the report (when asked) and, on success, the model file;
 // returns the exit code (0 success, 1 the fit failed or the constraint cannot be met).
 #pragma once
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/tree_fitter.h"
 #include "model/model.h"
 
 namespace implicitfit {
@@ -29,9 +32,11 @@ struct ModelFitRequest {
   bool HasShapeConstraints() const {
     return !through_vertices.empty() || !vertex_normals.empty() || !through_edges.empty();
   }
-  int cells = 0;       // patch-mesh: --cells (0: default)
-  double cell = 0.0;   // patch-mesh: --cell (0: from cells)
-  int continuity = 1;  // patch-mesh: --continuity
+  int cells = 0;                // patch-mesh: --cells (0: default)
+  double cell = 0.0;            // patch-mesh: --cell (0: from cells)
+  int continuity = 1;           // patch-mesh: --continuity
+  std::string grid;             // partition: --grid AxBxC
+  std::string child = "plane";  // partition: --child plane|quadric
 };
 
 // The fit of one cloud for the Bernstein kinds, shared by `fit` and `batch`: the report that
@@ -67,6 +72,16 @@ bool IsPatchKind(const std::string& kind);
 // box, paraboloid, capsule: a robust start (fit/shape_starts.h), then the tree fitter; the
 // report is the --init one plus "kind" and the start's parameters ("start").
 bool IsShapeKind(const std::string& kind);
+// The report fields of a tree fit started from `start`: the result's ToJson (success, message,
+// points, inliers, rms_distance, sigma, mean_normal_angle_deg, iterations, seconds, normals,
+// termination, "parameters"), and per parameter name its standard deviation at the optimum from the inliers
+// ("standard_deviations", fit/tree_covariance.h) and start value ("start").
+void AddTreeFitFigures(const TreeFitResult& r, const Model& start,
+                       const std::vector<Eigen::Vector3d>& points, const std::string& normals,
+                       nlohmann::json* report);
+// --model partition --grid AxBxC [--child plane|quadric]: the linear start of
+// fit/partition_start.h, then the tree fitter (apps/fit_partition_kind.cc).
+int RunPartitionFit(const ModelFitRequest& request);
 int RunShapeFit(const ModelFitRequest& request, unsigned seed);
 int RunTreeFit(const ModelFitRequest& request);
 int RunPatchFit(const ModelFitRequest& request);

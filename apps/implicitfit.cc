@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   actions["mesh"] = AddMeshCommand(app);
   actions["reconstruct"] = AddReconstructCommand(app);
   actions["detect"] = AddDetectCommand(app);
+  actions["design"] = AddDesignCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -89,6 +89,27 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       *hi += Vec::Constant(r);
       return;
     }
+    case NodeType::kPartitionSequence: {  // the cell children's boxes (not the separators')
+      NodeBox(model, node.children[node.count], lo, hi);
+      for (size_t c = node.count + 1; c < node.children.size(); ++c) {
+        Vec l, h;
+        NodeBox(model, node.children[c], &l, &h);
+        *lo = lo->cwiseMin(l);
+        *hi = hi->cwiseMax(h);
+      }
+      return;
+    }
+    case NodeType::kColemanFeatures: {  // the core's box grown by the farthest raised core
+      NodeBox(model, node.children[0], lo, hi);
+      double reach = p[0];
+      for (int q = 0; q < node.count; ++q) {
+        const double* e = p + 1 + ColemanFeatures::kPerFeature * q;
+        reach = std::max(reach, p[0] + e[4] + e[3] + e[5]);
+      }
+      *lo -= Vec::Constant(1.05 * reach);
+      *hi += Vec::Constant(1.05 * reach);
+      return;
+    }
     case NodeType::kPartition:
     case NodeType::kComplement:
     case NodeType::kMorph:

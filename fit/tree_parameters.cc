@@ -36,7 +36,13 @@ TreeParameters::Kind KindOfRole(FieldRole role) {
 TreeParameters::TreeParameters(const Model& model) {
   const std::vector<double>& p = model.parameters();
   entries_.resize(p.size());
-  for (const ModelNode& node : model.nodes()) {
+  // The separators of a partition_sequence are structure (as a grid's cuts): held fixed.
+  std::vector<bool> separator(model.nodes().size(), false);
+  for (const ModelNode& node : model.nodes())
+    if (node.type == NodeType::kPartitionSequence)
+      for (int j = 0; j < node.count; ++j) separator[node.children[j]] = true;
+  for (size_t index = 0; index < model.nodes().size(); ++index) {
+    const ModelNode& node = model.nodes()[index];
     // A convex-smoothing blend has no epsilon (width w = delta): its slot is held, not fitted.
     const bool no_epsilon = node.smoothing == BlendSmoothing::kConvex;
     auto is_fixed = [&node](const std::string& f) {
@@ -56,7 +62,12 @@ TreeParameters::TreeParameters(const Model& model) {
         scale = SmallestPartitionCell(node.cuts) / 2.0;
         kind = scale < 1e307 ? Kind::kUnitLogit : Kind::kLog;
       }
-      if (is_fixed(name) || structural || (no_epsilon && kind == Kind::kEpsilonLogit)) {
+      if (node.type == NodeType::kPartitionSequence) {
+        scale = SmallestPartitionSequenceCell(model.SeparatorsOf(node)) / 2.0;
+        kind = scale < 1e307 ? Kind::kUnitLogit : Kind::kLog;
+      }
+      if (separator[index] || is_fixed(name) || structural ||
+          (no_epsilon && kind == Kind::kEpsilonLogit)) {
         for (int j = 0; j < field.size; ++j) entries_[k + j].fixed_value = p[k + j];
         k += field.size;
         continue;

@@ -14,6 +14,9 @@
 //   partition epsilon                   eps = (w_min / 2) / (1 + exp(-b)), w_min the narrowest
 //                                       finite cell, so every iterate keeps cells >= 2 eps
 //                                       (no finite cell: eps = exp(b))
+//   partition_sequence epsilon          the same with w_min the narrowest cell (twice its
+//                                       inscribed radius); its separator planes are structure
+//                                       (held fixed, as the grid's cuts)
 //   delta, epsilon of a blend           reparameterised so that 0 < epsilon <= delta holds for
 //                                       every value of the free variables:
 //                                         delta = exp(a),  epsilon = delta / (1 + exp(-b))

@@ -39,6 +39,11 @@ const std::vector<TypeInfo>& Types() {
          {{"skeleton", -3, FieldRole::kPosition}, {"radius", 1, FieldRole::kPositiveLength}}},
         {NodeType::kPartition, "partition", {{"epsilon", 1}}},
         {NodeType::kBernsteinMesh, "bernstein_mesh", {{"control_points", 0}}},
+        {NodeType::kPartitionSequence, "partition_sequence", {{"epsilon", 1}}},
+        {NodeType::kColemanFeatures,
+         "coleman_features",
+         {{"core_radius", 1, FieldRole::kPositiveLength},
+          {"features", -ColemanFeatures::kPerFeature}}},
     };
     t.insert(t.end(), others.begin(), others.end());
     return t;
@@ -113,7 +118,9 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
     throw std::invalid_argument("AddPrimitive: operator type");
   if (type == NodeType::kBernsteinPatch)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinPatch for a bernstein_patch");
-  if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset || type == NodeType::kPartition)
+  if (type == NodeType::kBlobs || type == NodeType::kSkeletonOffset ||
+      type == NodeType::kPartition || type == NodeType::kPartitionSequence ||
+      type == NodeType::kColemanFeatures)
     throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset / AddPartition");
   if (type == NodeType::kBernsteinMesh)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinMesh for a bernstein_mesh");
@@ -175,6 +182,69 @@ int Model::AddPartition(std::vector<std::vector<double>> cuts, double epsilon, i
   const int index = AddNode(std::move(node), {epsilon});
   root_ = index;
   return index;
+}
+
+int Model::AddPartitionSequence(const std::vector<int>& separators, double epsilon, int order,
+                                const std::vector<int>& children, std::string name) {
+  const std::string who = "AddPartitionSequence: ";
+  if (separators.empty()) throw std::invalid_argument(who + "needs at least one separator");
+  if (!(epsilon > 0.0)) throw std::invalid_argument(who + "epsilon must be > 0");
+  if (order < 0 || order > UnitStep::kMaxOrder) throw std::invalid_argument(who + "order");
+  if (children.size() != separators.size() + 1)
+    throw std::invalid_argument(who + "needs " + std::to_string(separators.size() + 1) +
+                                " children (one more than separators)");
+  for (int c : separators)
+    if (c < 0 || c >= static_cast<int>(nodes_.size()) || nodes_[c].type != NodeType::kPlane)
+      throw std::invalid_argument(who + "every separator must be a plane node");
+  for (int c : children)
+    if (c < 0 || c >= static_cast<int>(nodes_.size()))
+      throw std::invalid_argument(who + "child index out of range");
+  ModelNode node;
+  node.type = NodeType::kPartitionSequence;
+  node.name = std::move(name);
+  node.count = static_cast<int>(separators.size());
+  node.order = order;
+  node.children = separators;
+  node.children.insert(node.children.end(), children.begin(), children.end());
+  double width = 0.0;
+  const int narrow = NarrowPartitionSequenceCell(SeparatorsOf(node), epsilon, &width);
+  if (narrow >= 0)
+    throw std::invalid_argument(who + "cell " + std::to_string(narrow) + " is " +
+                                std::to_string(width) +
+                                " wide, less than 2 epsilon = " + std::to_string(2.0 * epsilon));
+  const int index = AddNode(std::move(node), {epsilon});
+  root_ = index;
+  return index;
+}
+
+int Model::AddColemanFeatures(int core, double core_radius, const std::vector<double>& features,
+                              std::string name) {
+  const size_t m = features.size() / ColemanFeatures::kPerFeature;
+  if (m == 0 || features.size() != m * ColemanFeatures::kPerFeature)
+    throw std::invalid_argument("AddColemanFeatures: 7 numbers per feature, at least one");
+  if (!(core_radius > 0.0)) throw std::invalid_argument("AddColemanFeatures: core radius > 0");
+  if (core < 0 || core >= static_cast<int>(nodes_.size()))
+    throw std::invalid_argument("AddColemanFeatures: core index out of range");
+  ModelNode node;
+  node.type = NodeType::kColemanFeatures;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.children = {core};
+  std::vector<double> p = {core_radius};
+  p.insert(p.end(), features.begin(), features.end());
+  const int index = AddNode(std::move(node), p);
+  root_ = index;
+  return index;
+}
+
+std::vector<SeparatorPlane> Model::SeparatorsOf(const ModelNode& node) const {
+  std::vector<SeparatorPlane> out;
+  for (int j = 0; j < node.count; ++j) {
+    const double* p = parameters_.data() + nodes_[node.children[j]].first_parameter;
+    const Eigen::Vector3d n(p[0], p[1], p[2]);
+    out.push_back({n / n.norm(), p[3] / n.norm()});
+  }
+  return out;
 }
 
 int Model::AddBlobs(BlobKernel kernel, int order, const std::vector<double>& centers,
@@ -293,8 +363,16 @@ std::string Model::NodeLabel(int index) const {
   for (size_t parent = 0; parent < nodes_.size(); ++parent) {
     const std::vector<int>& ch = nodes_[parent].children;
     for (size_t c = 0; c < ch.size(); ++c)
-      if (ch[c] == index)
+      if (ch[c] == index) {
+        const ModelNode& up = nodes_[parent];
+        if (up.type == NodeType::kPartitionSequence) {  // JSON: separators, then children
+          const int m = up.count, k = static_cast<int>(c);
+          return NodeLabel(static_cast<int>(parent)) +
+                 (k < m ? ".separators[" + std::to_string(k) + "]"
+                        : ".children[" + std::to_string(k - m) + "]");
+        }
         return NodeLabel(static_cast<int>(parent)) + ".children[" + std::to_string(c) + "]";
+      }
   }
   return "node[" + std::to_string(index) + "]";
 }

@@ -21,6 +21,7 @@
 #include "model/bernstein_patch.h"
 #include "model/blobs.h"
 #include "model/box.h"
+#include "model/coleman_features.h"
 #include "model/cone.h"
 #include "model/convex_smooth_ops.h"
 #include "model/cylinder.h"
@@ -28,6 +29,7 @@
 #include "model/morph.h"
 #include "model/paraboloid.h"
 #include "model/partition.h"
+#include "model/partition_sequence.h"
 #include "model/plane.h"
 #include "model/quadric.h"
 #include "model/skeleton_offset.h"
@@ -49,14 +51,16 @@ enum class NodeType {
   kUnion,
   kIntersection,
   kDifference,
-  kBox,             // exact box SDF (model/box.h)
-  kComplement,      // -f of its one child (model/morph.h)
-  kMorph,           // t f_A + (1 - t) f_B of its two children (model/morph.h)
-  kParaboloid,      // vertex, axis, curvature (model/paraboloid.h)
-  kBlobs,           // Blinn blobs and compact kernels (model/blobs.h)
-  kSkeletonOffset,  // offsets of points, segments, polylines (model/skeleton_offset.h)
-  kPartition,       // soft space partition on a grid (model/partition.h)
-  kBernsteinMesh,   // model/bernstein_mesh.h: degree, grid, continuity; control_points
+  kBox,                // exact box SDF (model/box.h)
+  kComplement,         // -f of its one child (model/morph.h)
+  kMorph,              // t f_A + (1 - t) f_B of its two children (model/morph.h)
+  kParaboloid,         // vertex, axis, curvature (model/paraboloid.h)
+  kBlobs,              // Blinn blobs and compact kernels (model/blobs.h)
+  kSkeletonOffset,     // offsets of points, segments, polylines (model/skeleton_offset.h)
+  kPartition,          // soft space partition on a grid (model/partition.h)
+  kBernsteinMesh,      // model/bernstein_mesh.h: degree, grid, continuity; control_points
+  kPartitionSequence,  // soft partition by separator planes (model/partition_sequence.h)
+  kColemanFeatures,    // Coleman's features on a core distance (model/coleman_features.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -152,6 +156,18 @@ class Model {
   // A Bernstein mesh of degree k >= 1 over the Kuhn split of `grid`, with
   // 6 * cubes * NumBernsteinControlPoints(k) control points; continuity is 0 or 1 (declared,
   // checked by `check`). Throws std::invalid_argument otherwise.
+  // Sequential partition (model/partition_sequence.h): m >= 1 plane nodes as separators, m + 1
+  // cell children, 0 <= order <= 14, every cell >= 2 epsilon wide; throws
+  // std::invalid_argument otherwise. node.count = m; node.children = separators, then cells.
+  int AddPartitionSequence(const std::vector<int>& separators, double epsilon, int order,
+                           const std::vector<int>& children, std::string name = "");
+  // The separators of a partition_sequence node as unit-normal planes (stored parameters).
+  std::vector<SeparatorPlane> SeparatorsOf(const ModelNode& node) const;
+  // Coleman features (model/coleman_features.h) over the core child `core` (a signed
+  // distance): core radius R_C > 0, features as 7 numbers each (point 3, width, depth, radius,
+  // flare), m >= 1. Throws std::invalid_argument otherwise.
+  int AddColemanFeatures(int core, double core_radius, const std::vector<double>& features,
+                         std::string name = "");
   int AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
                        const std::vector<double>& control_points, std::string name = "");
   void SetRoot(int node) { root_ = node; }
@@ -260,6 +276,16 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
           }
       return acc;
     }
+    case NodeType::kPartitionSequence: {
+      const int m = node.count;
+      return PartitionSequence::Evaluate(
+          UnitStep::OfOrder(node.order), p[0], m,
+          [&](int j) { return EvaluateNode(node.children[j], params, x); },
+          [&](int j) { return EvaluateNode(node.children[m + j], params, x); });
+    }
+    case NodeType::kColemanFeatures:
+      return ColemanFeatures::Evaluate(
+          node.count, p, x, [&](const T* y) { return EvaluateNode(node.children[0], params, y); });
     case NodeType::kBlobs:
       return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order, node.count,
                                       p, x);

@@ -342,18 +342,25 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   return model->AddSkeletonOffset(kind, points, radius, name);
 }
 
-// partition {"cuts": [[x..], [y..], [z..]], "epsilon": e, "order": n, "children": [...]}:
-// strictly increasing cuts, every finite cell >= 2 epsilon wide (the partition of unity needs
-// it), one child per cell, x fastest.
-int ReadPartition(const json& node, const std::string& path, int depth, const std::string& name,
-                  Model* model) {
-  const double epsilon = Number(node, "epsilon", path);
-  RequirePositive(epsilon, path + ".epsilon");
+// The "epsilon" (> 0) and "order" (0..14) of a partition node.
+int ReadEpsilonAndOrder(const json& node, const std::string& path, double* epsilon) {
+  *epsilon = Number(node, "epsilon", path);
+  RequirePositive(*epsilon, path + ".epsilon");
   if (!node.contains("order") || !node.at("order").is_number_integer())
     Fail(path + ".order", "missing or not an integer");
   const long long order = node.at("order").get<long long>();
   if (order < 0 || order > UnitStep::kMaxOrder)
     Fail(path + ".order", "must be an integer in 0.." + std::to_string(UnitStep::kMaxOrder));
+  return static_cast<int>(order);
+}
+
+// partition {"cuts": [[x..], [y..], [z..]], "epsilon": e, "order": n, "children": [...]}:
+// strictly increasing cuts, every finite cell >= 2 epsilon wide (the partition of unity needs
+// it), one child per cell, x fastest.
+int ReadPartition(const json& node, const std::string& path, int depth, const std::string& name,
+                  Model* model) {
+  double epsilon;
+  const int order = ReadEpsilonAndOrder(node, path, &epsilon);
   if (!node.contains("cuts") || !node.at("cuts").is_array() || node.at("cuts").size() != 3)
     Fail(path + ".cuts", "must hold 3 arrays of cut positions (x, y, z; each may be empty)");
   std::vector<std::vector<double>> cuts(3);
@@ -386,7 +393,77 @@ int ReadPartition(const json& node, const std::string& path, int depth, const st
   for (size_t i = 0; i < ch.size(); ++i)
     children.push_back(
         ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", depth + 1, model));
-  return model->AddPartition(cuts, epsilon, static_cast<int>(order), children, name);
+  return model->AddPartition(cuts, epsilon, order, children, name);
+}
+
+// partition_sequence {"separators": [plane nodes x m], "epsilon": e, "order": n,
+// "children": [m + 1 nodes]}: every cell >= 2 epsilon wide (model/partition_sequence.h; the
+// refusal names the cell's child and its width).
+int ReadPartitionSequence(const json& node, const std::string& path, int depth,
+                          const std::string& name, Model* model) {
+  double epsilon;
+  const int order = ReadEpsilonAndOrder(node, path, &epsilon);
+  if (!node.contains("separators") || !node.at("separators").is_array() ||
+      node.at("separators").empty())
+    Fail(path + ".separators", "must be an array of at least 1 plane node");
+  const json& sep = node.at("separators");
+  if (!node.contains("children") || !node.at("children").is_array() ||
+      node.at("children").size() != sep.size() + 1)
+    Fail(path + ".children", "must hold one node per cell: " + std::to_string(sep.size() + 1) +
+                                 " nodes (one more than separators)");
+  std::vector<int> separators, children;
+  for (size_t i = 0; i < sep.size(); ++i) {
+    const std::string where = path + ".separators[" + std::to_string(i) + "]";
+    if (!sep[i].is_object() || !sep[i].contains("type") || sep[i].at("type") != "plane")
+      Fail(where, "must be a plane node ({\"type\": \"plane\", ...})");
+    separators.push_back(ReadNode(sep[i], where, depth + 1, model));
+  }
+  const json& ch = node.at("children");
+  for (size_t i = 0; i < ch.size(); ++i)
+    children.push_back(
+        ReadNode(ch[i], path + ".children[" + std::to_string(i) + "]", depth + 1, model));
+  ModelNode probe;
+  probe.count = static_cast<int>(separators.size());
+  probe.children = separators;
+  double width = 0.0;
+  const int narrow = NarrowPartitionSequenceCell(model->SeparatorsOf(probe), epsilon, &width);
+  if (narrow >= 0)
+    Fail(path + ".children[" + std::to_string(narrow) + "]",
+         "the cell of this child is " + json(width).dump() +
+             " wide (twice its inscribed radius), less than 2 epsilon = " +
+             json(2.0 * epsilon).dump() + " (its child would be reproduced nowhere)");
+  return model->AddPartitionSequence(separators, epsilon, static_cast<int>(order), children, name);
+}
+
+// coleman_features {"core_radius": R_C, "features": [{"point": [3], "width": W, "depth": D,
+// "radius": R, "flare": phi}, ...], "children": [CORE]}: R_C, W, R > 0, D >= 0, 0 <= phi <= 1.
+int ReadColemanFeatures(const json& node, const std::string& path, int depth,
+                        const std::string& name, Model* model) {
+  const double core_radius = Number(node, "core_radius", path);
+  RequirePositive(core_radius, path + ".core_radius");
+  if (!node.contains("features") || !node.at("features").is_array() || node.at("features").empty())
+    Fail(path + ".features", "must be an array of at least 1 feature object");
+  std::vector<double> features;
+  const json& list = node.at("features");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string at = path + ".features[" + std::to_string(i) + "]";
+    if (!list[i].is_object()) Fail(at, "must be an object {point, width, depth, radius, flare}");
+    CheckKeys(list[i], {"point", "width", "depth", "radius", "flare"}, at);
+    const std::vector<double> point = Vector(list[i], "point", 3, at);
+    features.insert(features.end(), point.begin(), point.end());
+    const double w = Number(list[i], "width", at), d = Number(list[i], "depth", at),
+                 r = Number(list[i], "radius", at), flare = Number(list[i], "flare", at);
+    RequirePositive(w, at + ".width");
+    RequirePositive(r, at + ".radius");
+    if (d < 0) Fail(at + ".depth", "must be >= 0");
+    if (flare < 0 || flare > 1) Fail(at + ".flare", "must be in [0, 1]");
+    features.insert(features.end(), {w, d, r, flare});
+  }
+  if (!node.contains("children") || !node.at("children").is_array() ||
+      node.at("children").size() != 1)
+    Fail(path + ".children", "must hold exactly 1 node: the core (a signed distance)");
+  const int core = ReadNode(node.at("children")[0], path + ".children[0]", depth + 1, model);
+  return model->AddColemanFeatures(core, core_radius, features, name);
 }
 
 std::set<std::string> AllowedKeys(NodeType type) {
@@ -401,6 +478,8 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kPlane) keys.insert("point");  // input form; written as normal, offset
   if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
   if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
+  if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
+  if (type == NodeType::kColemanFeatures) keys.insert("children");
   if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
   return keys;
 }
@@ -476,6 +555,10 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     index = ReadBlobs(node, path, name, model);
   } else if (type == NodeType::kPartition) {
     index = ReadPartition(node, path, depth, name, model);
+  } else if (type == NodeType::kPartitionSequence) {
+    index = ReadPartitionSequence(node, path, depth, name, model);
+  } else if (type == NodeType::kColemanFeatures) {
+    index = ReadColemanFeatures(node, path, depth, name, model);
   } else if (type == NodeType::kSkeletonOffset) {
     index = ReadSkeletonOffset(node, path, name, model);
   } else if (type == NodeType::kBernsteinMesh) {
@@ -531,6 +614,29 @@ json WriteNode(const Model& model, int index) {
     out["order"] = node.order;
     json children = json::array();
     for (int c : node.children) children.push_back(WriteNode(model, c));
+    out["children"] = children;
+  } else if (node.type == NodeType::kColemanFeatures) {
+    const int b = node.first_parameter;
+    out["core_radius"] = p[b];
+    json features = json::array();
+    for (int q = 0; q < node.count; ++q) {
+      const int e = b + 1 + ColemanFeatures::kPerFeature * q;
+      features.push_back({{"point", Slice(p, e, 3)},
+                          {"width", p[e + 3]},
+                          {"depth", p[e + 4]},
+                          {"radius", p[e + 5]},
+                          {"flare", p[e + 6]}});
+    }
+    out["features"] = features;
+    out["children"] = json::array({WriteNode(model, node.children[0])});
+  } else if (node.type == NodeType::kPartitionSequence) {
+    json separators = json::array(), children = json::array();
+    for (int j = 0; j < node.count; ++j) separators.push_back(WriteNode(model, node.children[j]));
+    for (size_t c = node.count; c < node.children.size(); ++c)
+      children.push_back(WriteNode(model, node.children[c]));
+    out["separators"] = separators;
+    out["epsilon"] = p[node.first_parameter];
+    out["order"] = node.order;
     out["children"] = children;
   } else if (node.type == NodeType::kBlobs) {
     const int b = node.first_parameter, m = node.count;

@@ -78,6 +78,12 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
     case NodeType::kPartition:
       return Leaf(TreeConvexity::kNotCertified,
                   "partition: not certified (sum b_i f_i is not convex even for convex f_i)");
+    case NodeType::kColemanFeatures:
+      return Leaf(TreeConvexity::kNotCertified, "coleman_features: not certified");
+    case NodeType::kPartitionSequence:
+      return Leaf(TreeConvexity::kNotCertified,
+                  "partition_sequence: not certified (sum w_j f_j is not convex even for convex "
+                  "f_j)");
     case NodeType::kBernsteinMesh:
       return Leaf(TreeConvexity::kNotCertified,
                   "bernstein_mesh: certified by its own check (\"meshes\": convex on the box)");

@@ -1,6 +1,7 @@
 // The typed property suite (as tests/model/primitives_test.cc, manif style) for the node kinds
-// of issue 16: box, paraboloid, blobs, skeleton offsets. Each kind builds its model and samples
-// surface points from its own parametric form (written here, independently of the evaluator):
+// of issue 16: box, paraboloid, blobs, skeleton offsets, soft partitions (grid, sequence). Each
+// kind builds its model and samples surface points from its own parametric form (written here,
+// independently of the evaluator):
 //   zero set on the sampled points, grad f parallel to the outward normal there (and unit for
 //   distances), f(p + h n) = h along the normal for exact distances, Jet derivatives w.r.t. every
 //   parameter and x against central differences, and the JSON round trip.
@@ -129,6 +130,43 @@ struct CapsuleKind {
   }
 };
 
+// Soft partitions, x = 0 the only cut / separator (epsilon 0.2, cubic step): the plane z = 0.3
+// for x > 0 and the sphere c = (-1.5, 0, 0), r = 0.8 for x < 0 (entirely in its cell's core).
+// Points at least 0.06 beyond the band |x| <= epsilon, where f is the cell's child exactly.
+struct PartitionKindBase {
+  static constexpr bool kTrueDistance = true;
+  static SurfacePoint Sample(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    if (u(rng) < 0.5) return {Vec(0.26 + 1.7 * u(rng), 4 * u(rng) - 2, 0.3), Vec(0, 0, 1)};
+    std::normal_distribution<double> g;
+    const Vec d = Vec(g(rng), g(rng), g(rng)).normalized();
+    return {Vec(-1.5, 0, 0) + 0.8 * d, d};
+  }
+  static void Children(Model* m, int* plane, int* sphere) {
+    *plane = m->AddPrimitive(NodeType::kPlane, {0, 0, 1, 0.3});
+    *sphere = m->AddPrimitive(NodeType::kSphere, {-1.5, 0, 0, 0.8});
+  }
+};
+struct PartitionGridKind : PartitionKindBase {
+  static Model Build() {
+    Model m;
+    int plane, sphere;
+    Children(&m, &plane, &sphere);
+    m.AddPartition({{0.0}, {}, {}}, 0.2, 3, {sphere, plane});  // cell 0: x < 0
+    return m;
+  }
+};
+struct PartitionSequenceKind : PartitionKindBase {
+  static Model Build() {
+    Model m;
+    const int separator = m.AddPrimitive(NodeType::kPlane, {1, 0, 0, 0});
+    int plane, sphere;
+    Children(&m, &plane, &sphere);
+    m.AddPartitionSequence({separator}, 0.2, 3, {plane, sphere});  // cell 0: outside, x > 0
+    return m;
+  }
+};
+
 template <typename Kind>
 class KindProperties : public ::testing::Test {
  protected:
@@ -136,8 +174,8 @@ class KindProperties : public ::testing::Test {
   std::mt19937 rng_{4321};
 };
 
-using Kinds =
-    ::testing::Types<BoxKind, ParaboloidKind, GaussianBlobKind, StepBlobKind, CapsuleKind>;
+using Kinds = ::testing::Types<BoxKind, ParaboloidKind, GaussianBlobKind, StepBlobKind, CapsuleKind,
+                               PartitionGridKind, PartitionSequenceKind>;
 TYPED_TEST_SUITE(KindProperties, Kinds);
 
 TYPED_TEST(KindProperties, SampledSurfacePointsAreOnTheZeroSet) {
