@@ -1,5 +1,6 @@
 #include "fit/fit_report.h"
 
+#include <cmath>
 #include <vector>
 
 namespace implicitfit {
@@ -37,7 +38,11 @@ nlohmann::json PrimitiveFitReport(const PrimitiveFitResult& r, NodeType kind, si
                  {"outer_contacts", r.zone.outer_contacts},
                  {"inner_contacts", r.zone.inner_contacts},
                  {"exchanges", r.zone.exchanges},
+                 {"lp_steps", r.zone.iterations},
+                 {"kkt_residual", r.zone.kkt_residual},
                  {"contacts", contacts}};
+    if (std::isfinite(r.zone.second_order_curvature))
+      j["zone"]["second_order_curvature"] = r.zone.second_order_curvature;
   }
   if (!r.parameters.empty()) {
     Model m;
