@@ -68,7 +68,9 @@ TEST(MetrologyCli, LeastSquaresAndMinimumZoneReports) {
     EXPECT_NEAR(ReadJson(dir + "/fit.json")["root"]["radius"].get<double>(), 2.0, 1e-12);
     if (e == "minimum-zone") {
       EXPECT_TRUE(report["zone"]["optimality_verified"].get<bool>());
-      EXPECT_EQ(report["zone"]["contacts"].size(), 5u);
+      // A zone at rounding level (exact points): no meaningful contact set; at most k + 1.
+      EXPECT_LE(report["zone"]["contacts"].size(), 5u);
+      EXPECT_LT(report["zone"]["width"].get<double>(), 1e-12);
     }
   }
 }
