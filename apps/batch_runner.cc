@@ -26,9 +26,10 @@ std::string ReportPath(const BatchOptions& o, const BatchInput& in) {
   return (fs::path(o.out_dir) / (in.name + ".report.json")).string();
 }
 
-// The figures of a complete earlier result, or false when it must be (re)fitted.
+// The figures of a complete earlier result, or false when it must be (re)fitted (also when it
+// was made with another estimator: a report without "estimator" predates the option, robust).
 bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, NodeType kind,
-                         BatchOutcome* out) {
+                         Estimator estimator, BatchOutcome* out) {
   try {
     const Model model = ReadModelFile(ModelPath(o, in));
     if (model.root() < 0 || model.nodes()[model.root()].type != kind) return false;
@@ -36,6 +37,7 @@ bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, NodeType k
     if (!report_file) return false;
     const nlohmann::json report = nlohmann::json::parse(report_file);
     if (!report.value("success", false)) return false;
+    if (report.value("estimator", std::string("robust")) != EstimatorName(estimator)) return false;
     out->rms = report.at("rms_distance").get<double>();
     out->inliers = report.at("inliers").get<size_t>();
     out->points = report.at("points").get<size_t>();
@@ -147,7 +149,7 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
     out.error = invalid;  // e.g. a --fix field the manifest's kind does not have
     return out;
   }
-  if (o.resume && ReadCompleteOutputs(in, o, fit_options.kind, &out)) {
+  if (o.resume && ReadCompleteOutputs(in, o, fit_options.kind, fit_options.estimator, &out)) {
     out.status = BatchStatus::kSkipped;
     return out;
   }

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "fit/primitive_fitter.h"
+#include "fit/primitive_tangent.h"
 #include "support/cmm_reference.h"
 
 namespace {
@@ -111,6 +112,12 @@ double Max(const std::vector<double>& v) {
   return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
 }
 
+std::string Fixed(double v, const char* format = "%.2f") {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
 std::vector<std::string> Split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream in(s);
@@ -142,8 +149,8 @@ int main(int argc, char** argv) {
   std::printf(
       "| kind | points | implicitfit LS ms | implicitfit MZ ms | PCL ms | implicitfit LS "
       "difference median / max (mm) "
-      "| PCL difference median / max (mm) | failures LS / MZ / PCL "
-      "|\n|---|---|---|---|---|---|---|---|\n");
+      "| PCL difference median / max (mm) | failures LS / MZ / PCL | MZ width / LS form error "
+      "median |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& name : kinds) {
     const CmmKind kind = name == "plane"      ? CmmKind::kPlane
                          : name == "sphere"   ? CmmKind::kSphere
@@ -152,7 +159,7 @@ int main(int argc, char** argv) {
     const NodeType nk = KindOf(kind);
     for (const std::string& size : sizes) {
       const int n = std::max(std::atoi(size.c_str()), kind == CmmKind::kCone ? 7 : 6);
-      std::vector<double> t_ls, t_mz, t_pcl, d_ours, d_pcl;
+      std::vector<double> t_ls, t_mz, t_pcl, d_ours, d_pcl, mz_ratio;
       int fail_ours = 0, fail_mz = 0, fail_pcl = 0;
       for (int seed = 1; seed <= seeds; ++seed) {
         const CmmSet s = testsupport::MakeCmmSet(kind, n, 1000 * n + seed);
@@ -173,6 +180,7 @@ int main(int argc, char** argv) {
         const std::vector<double> pcl = RunPcl(s);
         t_pcl.push_back(1e3 * Seconds(start));
         if (!mz.success) ++fail_mz;
+        if (mz.success && ls.success) mz_ratio.push_back(mz.zone.zone_width / ls.form.form_error);
         if (ls.success)
           d_ours.push_back(Largest(testsupport::ParameterDifferences(s, ls.parameters, ref)));
         else
@@ -184,9 +192,14 @@ int main(int argc, char** argv) {
         else
           ++fail_pcl;  // nothing found, or more than 1 mm off
       }
-      std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2g / %.2g | %.2g / %.2g | %d / %d / %d |\n",
-                  name.c_str(), n, Median(t_ls), Median(t_mz), Median(t_pcl), Median(d_ours),
-                  Max(d_ours), Median(d_pcl), Max(d_pcl), fail_ours, fail_mz, fail_pcl);
+      // Minimum zone needs k + 2 points: below that its column says n/a.
+      const bool mz_applies = n >= FreeParameterCount(nk) + 2;
+      std::printf(
+          "| %s | %d | %.2f | %s | %.2f | %.2g / %.2g | %.2g / %.2g | %d / %s / %d | %s |\n",
+          name.c_str(), n, Median(t_ls), mz_applies ? Fixed(Median(t_mz)).c_str() : "n/a",
+          Median(t_pcl), Median(d_ours), Max(d_ours), Median(d_pcl), Max(d_pcl), fail_ours,
+          mz_applies ? std::to_string(fail_mz).c_str() : "n/a", fail_pcl,
+          mz_applies ? Fixed(Median(mz_ratio), "%.3f").c_str() : "n/a");
       std::fflush(stdout);
     }
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cmath>
 #include <vector>
 
 namespace implicitfit {
@@ -52,7 +53,11 @@ nlohmann::json PrimitiveJson(const PrimitiveFitResult& r, NodeType kind, size_t 
                  {"outer_contacts", r.zone.outer_contacts},
                  {"inner_contacts", r.zone.inner_contacts},
                  {"exchanges", r.zone.exchanges},
+                 {"lp_steps", r.zone.iterations},
+                 {"kkt_residual", r.zone.kkt_residual},
                  {"contacts", contacts}};
+    if (std::isfinite(r.zone.second_order_curvature))
+      j["zone"]["second_order_curvature"] = r.zone.second_order_curvature;
   }
   if (!r.parameters.empty()) {
     Model m;

@@ -3,28 +3,41 @@
 // the zone is {x : |d(x)| <= t} (two parallel planes, concentric spheres, coaxial cylinders,
 // coaxial cones of the same angle), its width 2t is the form error.
 //
-// Method: sequential linear programming, each linear Chebyshev problem solved exactly by the
-// exchange algorithm (Stiefel; the dual simplex of the LP min t s.t. |d_i + g_i delta| <= t).
-// With k free parameters (fit/primitive_tangent.h) a reference is a set S of k + 1 points:
-//   1. signs: the null vector c of the k x (k+1) matrix [g_i] (i in S) gives sigma_i = sgn c_i
-//      (the alternation of the reference; lambda_i = |c_i| / sum |c| are the LP multipliers);
-//   2. Newton on the nonlinear levelled equations d_i(theta) = sigma_i h, i in S (k + 1
-//      equations, unknowns theta and h): quadratic convergence to machine precision;
-//   3. if some |d_j| > h the worst point enters the reference and the point chosen by the ratio
-//      test (min lambda_i / mu_i over mu_i > 0, A_S mu = [sigma_j g_j; 1]) leaves; else stop.
+// Method: sequential linear programming with a trust region (Madsen's minimax method), from the
+// least-squares fit (fit/least_squares_fit.h). With k free parameters (fit/primitive_tangent.h)
+// and the distances linearised at theta, d_i(theta + delta) ~ d_i + g_i delta, each step solves
+//   min t  s.t.  |d_i + g_i delta| <= t,  |delta_j| <= radius   (scaled columns)
+// exactly (fit/chebyshev_lp.h: GLPK simplex, then its exact rational simplex). The step is taken
+// when max_i |d_i| really falls by at least 1% of the decrease the LP predicts, and the radius
+// adapts to that ratio (doubled above 75%, quartered below 1%). max |d_i| decreases strictly
+// at every accepted step, so the iteration cannot cycle (the exchange it replaces did, on
+// near-degenerate contact sets); it stops when the LP predicts a decrease below 1e-13 of t.
+// Polish: when k + 1 points lie within 1e-6 t of the faces, Newton on the levelled equations
+// d_i(theta) = sigma_i h (those points) reaches machine precision; kept only if it does not
+// widen the zone.
+// Optimality certificate (first-order Kuhn-Tucker conditions of min t s.t. |d_i| <= t): over the
+// points within 1e-8 t of the zone's faces (sigma_i their face), multipliers lambda_i >= 0 with
+// sum lambda_i = 1 and sum lambda_i sigma_i g_i = 0; the residual
+// r = min_lambda |sum lambda_i sigma_i g_i|_1 (columns scaled so that a unit move changes some
+// distance by t) is computed exactly as the LP's optimum over a small box, and must be <= 1e-6.
+// Since the size parameter (offset, radius, angle-offset) has the same gradient at every point,
+// sum lambda_i sigma_i = 0: contacts on both faces. The contacts are usually k + 1 (the Haar
+// case, where the SLP converges quadratically); fewer when the optimum is held by curvature
+// (seen on cylinders and cones probed on few circles), where it converges linearly. There the
+// first-order conditions do not imply a minimum: the curvature of the Lagrangian
+// sum lambda_i sigma_i d_i along the directions that keep the contacts levelled (null space of
+// [sigma_i g_i, -1]) is computed by a central second difference and must not be negative; and,
+// since the problem is not convex and such flat optima can sit next to a narrower one, the SLP
+// restarts from moves both ways along that direction (0.3, 0.03, 0.003 of a unit) and along
+// every parameter (1 and 0.1 of a unit; a unit move changes some distance by t), keeping the
+// narrowest zone, until no restart narrows it (at most 5 rounds).
 // Why not p-norm continuation: sum |d_i|^p only approaches max |d_i| as N^(1/p), needs p in the
-// hundreds to reach 1e-12 and is then ill-conditioned; the exchange ends on the exact active set
-// and yields its optimality certificate for free. Why not a generic LP solver: the LPs have
-// k + 1 <= 7 unknowns, where one exchange step is a (k+1) x (k+1) solve.
-// Start: the least-squares fit (fit/least_squares_fit.h); S is seeded by decreasing |d_i|, each
-// point kept when it raises the rank of [g_i; 1] (an invertible reference).
-// Optimality conditions checked at the end (first-order, Kuhn-Tucker for min t s.t.
-// sigma_i d_i <= t): every multiplier lambda_i > 0 with sum lambda_i sigma_i g_i = 0 and
-// sum lambda_i = 1, every point inside the zone; since the size parameter (offset, radius,
-// angle-offset) has g = -1 at every point, sum lambda_i sigma_i = 0: contacts on both sides.
+// hundreds to reach 1e-12 and is then ill-conditioned; the LP gives the exact active set and its
+// certificate.
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -43,9 +56,15 @@ struct MinimumZoneResult {
   std::vector<int> sides;           // +1: on the outer face (d = +t), -1: on the inner face
   std::vector<double> multipliers;  // lambda_i of the contacts
   int outer_contacts = 0, inner_contacts = 0;
-  bool optimality_verified =
-      false;          // every lambda_i >= -1e-9, every |d_i| <= t (1 + 1e-9), both faces touched
-  int exchanges = 0;  // reference changes
+  // Kuhn-Tucker residual <= 1e-6, both faces touched, no negative second-order curvature
+  bool optimality_verified = false;
+  double kkt_residual = 0.0;  // min |sum lambda_i sigma_i g_i|_1 over the multipliers (scaled)
+  int exchanges = 0;          // changes of the contact set between accepted steps
+  int iterations = 0;         // LP steps (accepted or not)
+  // With fewer than k + 1 contacts: the least curvature of the Lagrangian along the directions
+  // keeping the contacts levelled (relative to t; must not be negative); +inf otherwise.
+  double second_order_curvature = INFINITY;
+  int escapes = 0;  // restarts from saddle points (negative curvature) that narrowed the zone
 };
 
 // Plane, sphere, cylinder and cone (a torus has no guarantee of the Haar condition here).

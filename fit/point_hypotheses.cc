@@ -237,6 +237,7 @@ PointHypothesisSearch BestPointHypothesis(
     NodeType kind, const std::vector<Vec3>& points, double tau, int budget, std::mt19937& rng,
     const std::function<void(std::vector<double>*)>& constrain) {
   PointHypothesisSearch search;
+  constexpr int kMinValid = 4;
   const int n = static_cast<int>(points.size()), k = FreeParameterCount(kind);
   if (kind == NodeType::kTorus || n < k) return search;
   search.enumerated = Binomial(n, k) <= budget;
@@ -289,6 +290,12 @@ PointHypothesisSearch BestPointHypothesis(
       search.support = support;
       search.parameters = h;
       best_cost = cost;
+    }
+    // Early stop: when every point supports the best hypothesis no subset can find more
+    // support; kMinValid hypotheses still compete on the truncated cost.
+    if (search.support == n && search.valid >= kMinValid) {
+      search.stopped_early = true;
+      break;
     }
   }
   return search;

@@ -14,7 +14,10 @@
 //   torus    not from points alone (a 7-point torus has no practical closed form): refused
 // The search tries every k-subset when there are at most `budget` of them, else `budget`
 // random ones; a hypothesis is scored by its support (points with |d| < tau), ties broken by
-// the truncated squared distances (MSAC).
+// the truncated squared distances (MSAC). It stops early once the best hypothesis is supported
+// by every point (nothing can beat its support) and at least 4 valid hypotheses competed on
+// the cost: on a clean CMM set that is after the first few subsets (the robust and
+// least-squares refinements that follow converge from any of them).
 #pragma once
 
 #include <Eigen/Core>
@@ -41,7 +44,8 @@ struct PointHypothesisSearch {
   std::vector<double> parameters;  // the best hypothesis; empty when none was valid
   int support = 0;                 // its points with |d| < tau
   int tried = 0, valid = 0;        // subsets tried, hypotheses built
-  bool enumerated = false;         // every subset was tried
+  bool enumerated = false;         // every subset was tried (unless stopped early)
+  bool stopped_early = false;      // every point supported the best hypothesis
 };
 
 // constrain (may be empty) is applied to every hypothesis before scoring (fixed fields).

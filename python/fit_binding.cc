@@ -4,7 +4,10 @@
 // included), so Python threads can run fits in parallel.
 // Normals: given ones are used as they are (scaled to unit length if needed); None estimates and
 // orients them as the command line does for a file without normals (datasets/normal_estimation.h),
-// so fit(*read_cloud(path)) fits exactly what `implicitfit fit path` fits.
+// so fit(*read_cloud(path)) fits exactly what `implicitfit fit path` fits; for `fit`, estimated
+// normals the neighbourhood fits do not trust (datasets/normal_trust.h: a few probed points) are
+// dropped and the fit hypothesises from points alone, as on the command line.
+// estimator= (fit/estimator.h) as `fit --estimator`.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -14,9 +17,11 @@
 #include <string>
 
 #include "datasets/normal_estimation.h"
+#include "datasets/normal_trust.h"
 #include "fit/fit_report.h"
 #include "fit/patch_fitter.h"
 #include "fit/primitive_fitter.h"
+#include "fit/primitive_tangent.h"
 #include "fit/tree_fitter.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
@@ -88,8 +93,24 @@ py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degr
                         ToPython(PatchFitReport(result, options, in.cloud.size(), in.action)));
 }
 
+// As EstimateNormalsIfMissing, then the command line's trust rule for primitive fits
+// (datasets/normal_trust.h: ReadCloudForPrimitiveFit).
+void EstimateTrustedNormalsIfMissing(FitInput* in) {
+  if (!in->estimate) return;
+  EstimateNormalsIfMissing(in);
+  const NormalTrust trust = AssessEstimatedNormals(in->cloud.points);
+  if (!trust.trusted) {
+    in->cloud.normals.clear();
+    in->action = "estimated, not trusted (" + trust.reason + "): fit from points only";
+  }
+}
+
 py::tuple Fit(const py::handle& points, const py::handle& normals, const std::string& kind,
-              long long seed, std::optional<double> threshold, std::optional<py::dict> fix) {
+              long long seed, std::optional<double> threshold, std::optional<py::dict> fix,
+              const std::string& estimator) {
+  if ((kind == "quadric-patch" || kind == "cubic-patch") && estimator != "robust")
+    throw py::value_error("estimator " + estimator +
+                          ": applies to plane, sphere, cylinder, cone and torus fits");
   if (kind == "quadric-patch" || kind == "cubic-patch")
     return PatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
   PrimitiveFitOptions options;
@@ -118,13 +139,20 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
       options.fixed[name] = values;
     }
   }
+  if (!EstimatorFromName(estimator, &options.estimator))
+    throw py::value_error("estimator " + estimator +
+                          ": unknown (robust, least-squares, minimum-zone)");
   std::string error;
   if (!options.IsValid(&error)) throw py::value_error(error);
-  FitInput in = ReadFitInput(points, normals, static_cast<size_t>(options.min_inliers));
+  // Without normals a fit needs the free parameter count plus one points (fit/point_hypotheses.h).
+  FitInput in =
+      ReadFitInput(points, normals,
+                   normals.is_none() ? static_cast<size_t>(FreeParameterCount(options.kind)) + 1
+                                     : static_cast<size_t>(options.min_inliers));
   PrimitiveFitResult result;
   {
     py::gil_scoped_release release;
-    EstimateNormalsIfMissing(&in);
+    EstimateTrustedNormalsIfMissing(&in);
     result = FitPrimitive(in.cloud.points, in.cloud.normals, options);
   }
   py::object model = result.success ? py::cast(result.ToModel(options.kind)) : py::none();
@@ -150,11 +178,14 @@ void BindFits(py::module_& m) {
   m.def(
       "fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
       py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
-      "Robust fit of one primitive (plane, sphere, cylinder, cone, torus; quadric-patch and\n"
+      py::arg("estimator") = "robust",
+      "Fit of one primitive (plane, sphere, cylinder, cone, torus; quadric-patch and\n"
       "cubic-patch go to fit_patch), as `implicitfit fit CLOUD --model KIND`.\n"
       "points, normals: (N, 3) arrays (normals None: estimated and oriented as the command\n"
       "line does). threshold: initial inlier band (None: 1% of the bounding-box diagonal).\n"
       "fix: {field: value}, e.g. {\"radius\": 2, \"axis\": [0, 0, 1]}.\n"
+      "estimator: \"robust\" (default), \"least-squares\" (every point, ISO 10360-6) or\n"
+      "\"minimum-zone\" (Chebyshev, ISO 1101), as `implicitfit fit --estimator`.\n"
       "Returns (Model, report); Model is None when the fit fails (report[\"message\"] says why).");
   m.def("fit_tree", &TreeFit, py::arg("points"), py::arg("normals"), py::arg("init"),
         "Fits every free parameter of a model tree (primitive parameters, delta and epsilon of\n"

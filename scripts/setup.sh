@@ -7,7 +7,8 @@ packages=(cmake g++ make libceres-dev libeigen3-dev libpcl-dev libflann-dev libo
           clang libclang-rt-14-dev  # clang: the fuzzers (scripts/fuzz.sh)
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/)
           libcgal-dev  # CGAL: bench/detect_comparison only
-          libsuitesparse-dev)  # SuiteSparseQR: continuity projection of patch meshes
+          libsuitesparse-dev  # SuiteSparseQR: continuity projection of patch meshes
+          libglpk-dev)  # GLPK: exact LPs of the minimum-zone fits
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

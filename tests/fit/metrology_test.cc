@@ -195,20 +195,16 @@ TEST_P(MinimumZoneCurved, NarrowerThanLeastSquaresAndLocallyOptimal) {
       const PrimitiveFitResult mz = FitSet(s, Estimator::kMinimumZone);
       ASSERT_TRUE(ls.success) << ls.message;
       ++sets;
-      // Spheres: every set must succeed. Cylinders and cones: the exchange does not always
-      // settle yet (cycling on near-degenerate references); a set it cannot certify fails with
-      // the reason, and every success must be a certified optimum.
-      if (kind == CmmKind::kSphere) ASSERT_TRUE(mz.success) << mz.message;
-      if (!mz.success) {
-        EXPECT_FALSE(mz.message.empty());
-        continue;
-      }
+      // Every set is certified (the sequential LP cannot cycle).
+      ASSERT_TRUE(mz.success) << mz.message;
       ++certified;
       EXPECT_LE(mz.zone.zone_width, ls.form.form_error + 1e-15);
       EXPECT_TRUE(mz.zone.optimality_verified);
       EXPECT_GE(mz.zone.outer_contacts, 1);
       EXPECT_GE(mz.zone.inner_contacts, 1);
-      EXPECT_EQ(mz.zone.contacts.size(), static_cast<size_t>(k + 1));
+      // k + 1 contacts in the Haar case; fewer when curvature holds the optimum.
+      EXPECT_LE(mz.zone.contacts.size(), static_cast<size_t>(k + 1));
+      EXPECT_LE(mz.zone.kkt_residual, 1e-6);
       // Independent check: the zone's half width t = max |d_i|, and no random move of the
       // parameters (radius, centre, axis, angle) by up to 1e-4 mm lowers it.
       auto half_width = [&](const std::vector<double>& p) {
