@@ -6,6 +6,7 @@
 
 #include "datasets/neighbourhoods.h"
 #include "datasets/oriented_cloud.h"
+#include "model/median.h"
 
 namespace implicitfit {
 namespace {
@@ -13,12 +14,6 @@ namespace {
 constexpr double kMaxShare = 0.1;
 constexpr double kMaxVariation = 0.15;
 constexpr size_t kCheckedUpTo = 20000;
-
-double Median(std::vector<double> v) {
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
-}
 
 }  // namespace
 

@@ -1,8 +1,8 @@
 #include "fit/fit_report.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace implicitfit {

@@ -15,6 +15,8 @@
 #include "fit/patch_hypotheses.h"
 #include "fit/primitive_fitter.h"
 #include "fit/primitive_function.h"
+#include "fit/thread_count.h"
+#include "model/median.h"
 
 namespace implicitfit {
 namespace {
@@ -78,13 +80,6 @@ void Translate(NodeType kind, std::vector<double>* p, const Vector3d& shift) {
     return;
   }
   for (int k = 0; k < 3; ++k) (*p)[k] += shift[k];
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
 }
 
 // At most `count` entries of v, evenly spread (deterministic).
@@ -510,9 +505,7 @@ class Detector {
 
   void Run(DetectionResult* result) {
     const int N = static_cast<int>(x_.size());
-    const int threads = options_.num_threads > 0
-                            ? options_.num_threads
-                            : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
     std::vector<Workspace> workspaces(threads);
     // Seedable points: normal within theta of each of its first 8 neighbours (not on a crease).
     std::vector<int> pool;
@@ -691,9 +684,7 @@ class Detector {
   // kSimplerCostRatio of the own model's: FitKindToSupport on the whole support.
   int Simplify() {
     int changed = 0;
-    const int threads = options_.num_threads > 0
-                            ? options_.num_threads
-                            : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
     std::vector<char> flags(primitives_.size(), 0);
     ParallelFor(static_cast<int>(primitives_.size()), threads, [&](int k, int) {
       DetectedPrimitive& p = primitives_[k];
@@ -748,9 +739,7 @@ class Detector {
     for (const auto& p : primitives_) fs.emplace_back(p.kind, p.parameters);
     std::vector<int> labels(N, -1);
     std::vector<int> fallback(N, -1);  // nearest within tau whatever the normal
-    const int threads = options_.num_threads > 0
-                            ? options_.num_threads
-                            : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
     const int chunks = 64;
     ParallelFor(chunks, threads, [&](int c, int) {
       for (int i = static_cast<int>(static_cast<long>(N) * c / chunks);
@@ -821,9 +810,7 @@ class Detector {
   // Maximum-likelihood refinement of `fit` on each primitive's points, then its figures.
   void Refine() {
     const int K = static_cast<int>(primitives_.size());
-    const int threads = options_.num_threads > 0
-                            ? options_.num_threads
-                            : std::max(1u, std::thread::hardware_concurrency());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
     ParallelFor(K, threads, [&](int k, int) {
       DetectedPrimitive& p = primitives_[k];
       if (options_.refine) {

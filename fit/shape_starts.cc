@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "fit/primitive_fitter.h"
+#include "model/median.h"
 
 namespace implicitfit {
 namespace {
@@ -24,11 +25,6 @@ ShapeStart Failed(const std::string& why) {
   ShapeStart s;
   s.message = why;
   return s;
-}
-
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 ShapeStart ParaboloidStart(const std::vector<Vec>& points, const std::vector<Vec>& normals,
