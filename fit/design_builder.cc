@@ -22,9 +22,9 @@ std::vector<OrientedRepresentative> PickRepresentatives(const std::vector<Vec>& 
                                                         const std::vector<Vec>& normals, int count,
                                                         bool with_curvature) {
   const int n = static_cast<int>(points.size());
-  if (count < 1) throw std::invalid_argument("--count must be >= 1");
+  if (count < 1) throw std::invalid_argument("the representative count must be >= 1");
   if (n < count || static_cast<int>(normals.size()) != n)
-    throw std::invalid_argument("fewer oriented points than --count");
+    throw std::invalid_argument("fewer oriented points than representatives asked for");
   Vec lo = points[0], hi = points[0], mean = Vec::Zero();
   for (const Vec& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p), mean += p;
   mean /= n;
@@ -118,7 +118,7 @@ std::vector<double> EnclosingEllipsoid(const std::vector<Vec>& points) {
 Model DesignModel(const std::vector<OrientedRepresentative>& representatives,
                   const std::vector<double>& base_ellipsoid, const DesignOptions& options) {
   if (!IsDesignPrimitive(options.primitive))
-    throw std::invalid_argument("--primitive must be plane or paraboloid, not '" +
+    throw std::invalid_argument("the design primitive must be plane or paraboloid, not '" +
                                 options.primitive + "'");
   if (!(options.delta > 0) || !(options.epsilon > 0) || options.epsilon > options.delta)
     throw std::invalid_argument("need 0 < epsilon <= delta");
@@ -140,10 +140,11 @@ Model DesignModel(const std::vector<OrientedRepresentative>& representatives,
 Model DesignFromOrientedPoints(const std::vector<Vec>& points, const std::vector<Vec>& normals,
                                DesignOptions options) {
   if (!IsDesignPrimitive(options.primitive))
-    throw std::invalid_argument("--primitive must be plane or paraboloid, not '" +
+    throw std::invalid_argument("the design primitive must be plane or paraboloid, not '" +
                                 options.primitive + "'");
   if (options.order < 0 || options.order > UnitStep::kMaxOrder)
-    throw std::invalid_argument("--order must be in 0.." + std::to_string(UnitStep::kMaxOrder));
+    throw std::invalid_argument("the blend order must be in 0.." +
+                                std::to_string(UnitStep::kMaxOrder));
   Vec lo = points.empty() ? Vec::Zero() : points[0], hi = lo;
   for (const Vec& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   if (options.delta <= 0) options.delta = 0.02 * (hi - lo).norm();

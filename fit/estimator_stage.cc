@@ -16,7 +16,7 @@ void FinishWithEstimator(const std::vector<Eigen::Vector3d>& points,
   }
   if (options.estimator == Estimator::kMinimumZone && !options.fixed.empty()) {
     result->success = false;
-    result->message = "--fix is not available with the minimum-zone estimator";
+    result->message = "fixed parameters are not available with the minimum-zone estimator";
     return;
   }
   const LeastSquaresResult ls = LeastSquaresFit(kind, points, result->parameters, options.fixed);

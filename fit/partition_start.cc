@@ -56,9 +56,10 @@ bool IsPartitionChildKind(const std::string& child) {
 PartitionStart LinearPartitionStart(const std::vector<Vec>& points, const std::vector<Vec>& normals,
                                     const PartitionStartOptions& options) {
   if (!IsPartitionChildKind(options.child))
-    throw std::invalid_argument("--child must be plane or quadric, not '" + options.child + "'");
+    throw std::invalid_argument("the partition child must be plane or quadric, not '" +
+                                options.child + "'");
   for (int k = 0; k < 3; ++k)
-    if (options.cells[k] < 1) throw std::invalid_argument("--grid: every count must be >= 1");
+    if (options.cells[k] < 1) throw std::invalid_argument("every grid count must be >= 1");
   if (!(options.epsilon_fraction > 0 && options.epsilon_fraction <= 0.5))
     throw std::invalid_argument("epsilon fraction must be in (0, 0.5]");
   PartitionStart out;
