@@ -29,7 +29,7 @@ CgalPoissonResult CgalPoisson(const std::vector<Eigen::Vector3d>& points,
   Mesh mesh;
   result.success = CGAL::poisson_surface_reconstruction_delaunay(
       pwn.begin(), pwn.end(), CGAL::First_of_pair_property_map<Pwn>(),
-      CGAL::Second_of_pair_property_map<Pwn>(), mesh, result.average_spacing);
+      CGAL::Second_of_pair_property_map<Pwn>(), mesh, result.average_spacing, 20.0, 1.0, 0.25);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!result.success) return result;
   std::vector<int> index(mesh.number_of_vertices() + mesh.number_of_removed_vertices(), -1);

@@ -12,7 +12,8 @@
 //     each point (its faces are planar).
 //   For the real clouds, the distance of x to the truth: p the nearest truth point, e the
 //   first-order distance of x to p's surface (equation or tangent plane); when x projects onto
-//   that surface within 2 mean point spacings of p (sqrt(|x - p|^2 - e^2) <= 2 s) the distance is
+//   that surface within the local sampling radius of p (sqrt(|x - p|^2 - e^2) <= r_p, r_p the
+//   distance from p to its 8th nearest truth point: random samples leave holes) the distance is
 //   e, else |x - p| (x is beyond the sampled part of the surface). Truth samples: the points.
 // implicitfit starts from primitives fitted to ground-truth labels (generated solids, Fit4CAD;
 // as detect would give) or from `detect` (the box, unlabelled), then reconstruct and mesh (128
@@ -222,8 +223,9 @@ void BoundingBox(const std::vector<Vec>& points, Vec* lo, Vec* hi) {
 struct PointTruth {
   std::vector<Vec> points, normals;                              // oriented truth points
   std::vector<std::function<double(const Vec&, Vec*)>> surface;  // per point: signed e, grad
-  double spacing = 0;
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+
+  std::vector<double> radius;  // per point: distance to its 8th nearest neighbour
 
   void Build() {
     pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
@@ -231,12 +233,10 @@ struct PointTruth {
     tree.setInputCloud(cloud);
     std::vector<int> idx;
     std::vector<float> d2;
-    double sum = 0;
     for (const Vec& p : points) {
-      tree.nearestKSearch(pcl::PointXYZ(p.x(), p.y(), p.z()), 2, idx, d2);
-      sum += std::sqrt(d2[1]);
+      tree.nearestKSearch(pcl::PointXYZ(p.x(), p.y(), p.z()), 9, idx, d2);
+      radius.push_back(std::sqrt(d2.back()));
     }
-    spacing = sum / points.size();
   }
   double Distance(const Vec& x, Vec* normal) const {
     std::vector<int> idx;
@@ -249,7 +249,7 @@ struct PointTruth {
     if (g.dot(normals[i]) < 0) g = -g;
     *normal = g;
     const double tangential = std::sqrt(std::max(0.0, to_point * to_point - e * e));
-    return tangential <= 2 * spacing ? e : to_point;
+    return tangential <= radius[i] ? e : to_point;
   }
 };
 

@@ -163,7 +163,7 @@ TEST(SharpFeatures, HalfBallCreaseIsTheUnitCircle) {
     worst_sharp = std::max(worst_sharp, DistanceToMesh(x, sharp.mesh));
     worst_plain = std::max(worst_plain, DistanceToMesh(x, plain.mesh));
   }
-  std::printf("  half-ball crease: worst distance %.3f h (marching cubes alone %.3f h)\n",
+  std::printf("  half-ball crease: worst distance %.2e h (marching cubes alone %.3f h)\n",
               worst_sharp / h, worst_plain / h);
   // Tangent planes of the sphere at vertices within ~2 cells of the crease miss it by about
   // (2 h)^2 / (2 r) = 0.14 h here (h = 0.07, r = 1); the chord between crease points adds
