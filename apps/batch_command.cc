@@ -80,9 +80,11 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("--manifest", a->manifests,
                   "A text file listing one cloud path per line (relative to it); repeatable")
       ->allow_extra_args(false);  // one file per --manifest: later words stay INPUTS
-  cmd->add_option("--model", a->kind,
-                  "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, "
-                  "patch-mesh; or scene (detect every primitive of each cloud)")
+  cmd->add_option(
+         "--model", a->kind,
+         "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, cubic-patch, "
+         "patch-mesh; or scene (detect every primitive of each cloud); or solid (reconstruct "
+         "each cloud's solid)")
       ->required();
   cmd->add_flag("--convex", a->convex, "Bernstein kinds: constrain and certify convexity")
       ->group("Bernstein patches");
@@ -121,8 +123,11 @@ CommandAction AddBatchCommand(CLI::App& app) {
                   "robust (default), least-squares or minimum-zone, as `fit --estimator`");
   return [a]() {
     if (a->inputs.empty() && a->manifests.empty()) throw InputError("no INPUTS and no --manifest");
-    const bool scene = a->kind == "scene";  // one detection per input (apps/batch_scene.cc)
-    if (scene && !a->fixes.empty()) throw InputError("--fix does not apply to --model scene");
+    const bool solid = a->kind == "solid";  // one reconstruction per input (apps/batch_solid.cc)
+    const bool scene = a->kind == "scene" || solid;  // one detection per input (batch_scene.cc)
+    if (scene && !a->fixes.empty()) throw InputError("--fix does not apply to --model " + a->kind);
+    if (solid && a->threshold > 0)  // reconstruct runs detect with its defaults
+      throw InputError("--threshold does not apply to --model solid");
     const bool model_kind = IsPatchKind(a->kind) || IsMeshKind(a->kind);
     if (!model_kind && a->convex)
       throw InputError("--convex applies to quadric-patch, cubic-patch and patch-mesh");
@@ -150,7 +155,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
     BatchOptions options;
     options.out_dir = a->out_dir;
     options.resume = a->resume;
-    options.scene = scene;
+    options.scene = scene && !solid;
+    options.solid = solid;
     options.detect.seed = a->seed;
     options.detect.threshold = scene ? a->threshold : 0.0;
     options.jobs = ThreadCountOrDefault(a->jobs);

@@ -134,6 +134,7 @@ const char* BatchStatusName(BatchStatus status) {
 
 BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   if (o.scene) return ProcessSceneInput(in, o);
+  if (o.solid) return ProcessSolidInput(in, o);
   if (o.model_fit) return ProcessModelKindInput(in, o);
   BatchOutcome out;
   out.input = in.path;

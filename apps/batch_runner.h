@@ -56,6 +56,7 @@ struct BatchOptions {
   bool resume = false;      // skip inputs whose outputs are complete
   bool scene = false;       // `--model scene`: one detection per input (apps/detect_job.h)
   DetectionOptions detect;  // used for every input when scene is set
+  bool solid = false;       // `--model solid`: one reconstruction per input (detect.seed used)
   // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit_model_kinds.h): when set,
   // every input is fitted by model_fit(cloud path) instead of `fit`; resume then also requires
   // the model's root to be model_kind and, with require_certified (--convex), the report to
@@ -82,6 +83,13 @@ BatchOutcome ProcessBatchInput(const BatchInput& input, const BatchOptions& opti
 // parses, the labels parse with one per point of it, and the report counts its primitives.
 // inliers = points assigned to a primitive, rms = the largest primitive RMS.
 BatchOutcome ProcessSceneInput(const BatchInput& input, const BatchOptions& options);
+
+// `--model solid` (apps/batch_solid.cc): `reconstruct` without a scene (detect, then the solid;
+// apps/reconstruct_job.h): <name>.model.json and <name>.report.json (the `reconstruct --report`
+// content). ok: the reconstruction succeeded; failed: it did not (report only; a stale model is
+// removed); skipped (resume): the model parses and the report parses and says success.
+// rms, inliers and points from the report.
+BatchOutcome ProcessSolidInput(const BatchInput& input, const BatchOptions& options);
 
 // Removes the temporaries a killed run left for these inputs in out_dir.
 void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir);

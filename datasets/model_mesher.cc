@@ -20,6 +20,7 @@
 
 #include "datasets/atomic_file.h"
 #include "datasets/model_sampler.h"
+#include "datasets/sharp_features.h"
 
 namespace implicitfit {
 namespace {
@@ -211,12 +212,25 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
 
   vtkCellArray* polys = poly->GetPolys();
   mesh.triangles.reserve(polys->GetNumberOfCells());
+  std::vector<Eigen::Vector3i> triangle_cells;  // the grid cell of each triangle (step 5)
+  triangle_cells.reserve(polys->GetNumberOfCells());
   vtkNew<vtkIdList> ids;
   for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
     polys->GetCellAtId(c, ids);
     if (ids->GetNumberOfIds() != 3) continue;  // flying edges emits triangles only
     mesh.triangles.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
                                 static_cast<int>(ids->GetId(2)));
+    // The triangle's vertices lie on edges of one cell: its centroid (index space) is inside.
+    Vec centroid = Vec::Zero();
+    for (int k = 0; k < 3; ++k) {
+      double u[3];
+      poly->GetPoint(ids->GetId(k), u);
+      centroid += Vec(u[0], u[1], u[2]) / 3.0;
+    }
+    Eigen::Vector3i cell;
+    for (int a = 0; a < 3; ++a)
+      cell[a] = std::clamp(static_cast<int>(std::floor(centroid[a])), 0, grid.n[a] - 2);
+    triangle_cells.push_back(cell);
   }
   // 4. Normals from grad f; orient the triangles with it (one global decision by majority,
   // so the case table's consistent orientation is kept).
@@ -247,6 +261,15 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
       const double n = face_sum[v].norm();
       mesh.normals[v] = n > 0 ? Vec(face_sum[v] / n) : Vec(0, 0, 1);
     }
+  if (options.sharp_features) {  // 5.
+    SharpFeatureOptions sharp;
+    sharp.feature_angle_deg = options.feature_angle_deg;
+    const SharpFeatureStats stats =
+        InsertSharpFeatures(model, grid.origin, h, triangle_cells, &mesh, sharp);
+    result.feature_points = stats.feature_points;
+    result.feature_flips = stats.flips;
+    result.max_feature_distance = stats.max_distance;
+  }
   return result;
 }
 

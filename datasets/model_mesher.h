@@ -12,8 +12,16 @@
 //   4. vertex normals are grad f / |grad f| (outward, DESIGN.md sign); where the gradient is
 //      zero or not finite, the mean of the adjacent triangles' normals.
 // Grid values that are NaN count as outside (+h); exact zeros are nudged to +tiny so that no
-// vertex sits on a grid node. Surfaces leaving the box end open at its faces. Sharp edges are
-// cut by a band of about one cell (marching cubes does not place vertices on creases).
+// vertex sits on a grid node. Surfaces leaving the box end open at its faces.
+//   5. sharp edges and corners (sharp_features, on by default): marching cubes alone cuts a
+//      crease by a band about one cell wide. Each cell's patch whose grad f normals spread by
+//      more than feature_angle_deg is replaced by a fan to the intersection of its vertices'
+//      tangent planes, and fans of neighbouring cells are flipped to share the crease edge
+//      (extended marching cubes, datasets/sharp_features.h). This keeps the watertight, oriented
+//      topology of step 2 (the patches' boundary edges are untouched). Chosen over dual
+//      contouring (its meshes need not be manifold where a cell holds two sheets) and over
+//      CGAL's Mesh_3 (its sharp features must be given as polylines, which a model does not
+//      list).
 #pragma once
 
 #include <Eigen/Core>
@@ -38,13 +46,18 @@ struct MeshOptions {
   double cell = 0.0;                 // grid spacing; 0: longest box side / 100
   int num_threads = 0;               // for the grid values; 0 = hardware concurrency
   long max_grid_points = 64L << 20;  // refuse finer grids (memory: 8 bytes a point)
+  bool sharp_features = true;        // step 5
+  double feature_angle_deg = 30.0;   // step 5: normals spreading more mark a crease or corner
 };
 
 struct MeshResult {
   TriangleMesh mesh;
-  Eigen::Vector3d box_min, box_max;  // the box that was gridded
-  double cell = 0.0;                 // the grid spacing used
-  double max_abs_value = 0.0;        // max |f| over the refined vertices
+  Eigen::Vector3d box_min, box_max;   // the box that was gridded
+  double cell = 0.0;                  // the grid spacing used
+  double max_abs_value = 0.0;         // max |f| over the refined (grid-edge) vertices
+  int feature_points = 0;             // step 5: vertices placed on creases and corners
+  int feature_flips = 0;              // step 5: crease edges made by flips
+  double max_feature_distance = 0.0;  // step 5: largest |f| / |grad f| at a feature point
 };
 
 // Throws std::invalid_argument for an invalid box or cell (or a grid above max_grid_points).

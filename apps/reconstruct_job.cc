@@ -1,0 +1,88 @@
+#include "apps/reconstruct_job.h"
+
+#include "apps/detect_job.h"
+#include "datasets/io_error.h"
+#include "datasets/oriented_cloud.h"
+#include "datasets/scene_file.h"
+
+namespace implicitfit {
+namespace {
+
+std::vector<SolidPrimitive> PrimitivesOfScene(const Scene& scene) {
+  std::vector<SolidPrimitive> primitives;
+  for (const ScenePrimitive& p : scene.primitives)
+    primitives.push_back({p.name, p.model, p.rms_distance});
+  return primitives;
+}
+
+nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
+                      const std::string& normals, const std::vector<SolidPrimitive>& primitives) {
+  nlohmann::json j;
+  j["success"] = r.success;
+  j["message"] = r.message;
+  j["points"] = cloud.size();
+  j["normals"] = normals;
+  j["expression"] = r.expression;
+  j["bounded"] = r.bounded;
+  j["rms_distance"] = r.rms;
+  j["sigma"] = r.sigma;
+  j["inliers"] = r.inliers;
+  j["normal_sign_agreement"] = r.normal_agreement;
+  j["unassigned"] = r.unassigned;
+  j["seconds"] = r.seconds;
+  j["primitives"] = nlohmann::json::array();
+  for (size_t k = 0; k < primitives.size() && k < r.sides.size(); ++k)
+    j["primitives"].push_back(
+        {{"name", primitives[k].name}, {"side", r.sides[k]}, {"points", r.assigned[k]}});
+  j["blends"] = nlohmann::json::array();
+  for (const BlendEstimate& b : r.blends)
+    j["blends"].push_back(
+        {{"node", b.node},
+         {"type", b.type},
+         {"delta", b.delta},
+         {"epsilon", b.epsilon},
+         {"standard_deviations", {{"delta", b.sd_delta}, {"epsilon", b.sd_epsilon}}},
+         {"crease_angle_deg", b.crease_angle_deg},
+         {"fillet_radius", b.fillet_radius},
+         {"fillet_radius_standard_deviation", b.sd_fillet_radius},
+         {"transition_points", b.transition_points}});
+  return j;
+}
+
+}  // namespace
+
+CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
+                                         const std::string& scene_path, unsigned seed) {
+  CloudReconstruction out;
+  out.cloud = ReadOrientedCloud(cloud_path, &out.normals);
+  if (scene_path.empty()) {
+    // detect on the same file with its defaults; the cloud it read carries the normals it used.
+    DetectionOptions options;
+    options.seed = seed;
+    CloudDetection detection = DetectCloudFile(cloud_path, options);
+    out.cloud = std::move(detection.cloud);
+    out.primitives = PrimitivesOfScene(detection.scene);
+    out.detected = true;
+  } else {
+    const Scene scene = ReadSceneFile(scene_path);
+    if (scene.points > 0 && static_cast<size_t>(scene.points) != out.cloud.size())
+      throw InputError(scene_path + ": scene is of a cloud of " + std::to_string(scene.points) +
+                       " points, " + cloud_path + " has " + std::to_string(out.cloud.size()));
+    if (scene.primitives.empty()) throw InputError(scene_path + ": no primitives");
+    if (scene.primitives.size() > 64) throw InputError(scene_path + ": more than 64 primitives");
+    out.primitives = PrimitivesOfScene(scene);
+  }
+  if (out.primitives.empty()) {
+    out.result.message = "detect found no primitive";
+  } else if (!out.cloud.has_normals()) {
+    out.result.message = "no normals (" + out.normals + ")";
+  } else {
+    SolidReconstructionOptions options;
+    options.seed = seed;
+    out.result = ReconstructSolid(out.cloud.points, out.cloud.normals, out.primitives, options);
+  }
+  out.report = Report(out.result, out.cloud, out.normals, out.primitives);
+  return out;
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,35 @@
+// The solid reconstruction of one cloud file, shared by `reconstruct` and `batch --model solid`:
+// read the cloud with oriented normals (datasets/oriented_cloud.h), take the primitives of a
+// scene file or, without one, of `detect` run on the cloud with its defaults and the given seed
+// (apps/detect_job.h), and reconstruct the solid (fit/solid_reconstruction.h). The report:
+//   {"success", "message", "points", "normals", "expression", "bounded", "rms_distance", "sigma",
+//    "inliers", "normal_sign_agreement", "unassigned", "seconds", "primitives": [{"name",
+//    "side", "points"}], "blends": [{"node", "type", "delta", "epsilon", "standard_deviations",
+//    "crease_angle_deg", "fillet_radius", "fillet_radius_standard_deviation",
+//    "transition_points"}]}
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "datasets/point_cloud.h"
+#include "fit/solid_reconstruction.h"
+
+namespace implicitfit {
+
+struct CloudReconstruction {
+  PointCloud cloud;       // as read (with the normals the reconstruction used)
+  std::string normals;    // how the normals were obtained
+  bool detected = false;  // primitives from detect (no scene given)
+  std::vector<SolidPrimitive> primitives;
+  SolidReconstruction result;
+  nlohmann::json report;
+};
+
+// Throws InputError naming the file when the cloud or the scene cannot be read or do not match.
+// A cloud without normals, or on which detect finds nothing, gives result.success false and
+// its reason in result.message (and the report).
+CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
+                                         const std::string& scene_path, unsigned seed);
+
+}  // namespace implicitfit
