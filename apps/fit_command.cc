@@ -93,7 +93,7 @@ CommandAction AddFitCommand(CLI::App& app) {
                   "3x3x2")
       ->group("Soft partitions");
   cmd->add_option("--child", a->child,
-                  "partition: the child of every cell, plane (default) or quadric")
+                  "partition: the child of every cell, plane (default), quadric or quadric-patch")
       ->group("Soft partitions");
   cmd->add_option("--through-vertex", a->through_vertices,
                   "Patch passes exactly through tetrahedron vertex I (1..4): b_{k e_I} = 0")

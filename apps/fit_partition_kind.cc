@@ -1,6 +1,7 @@
-// implicitfit fit CLOUD --model partition --grid AxBxC [--child plane|quadric] --out M.json:
-// the one sparse least-squares start (fit/partition_start.h), then the tree fitter; the report
-// is the shape kinds' (AddTreeFitFigures) plus the grid, the child and the linear start's RMS.
+// implicitfit fit CLOUD --model partition --grid AxBxC [--child plane|quadric|quadric-patch] --out
+// M.json: the one sparse least-squares start (fit/partition_start.h), then the tree fitter; the
+// report is the shape kinds' (AddTreeFitFigures) plus the grid, the child and the linear start's
+// RMS.
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -40,7 +41,7 @@ int RunPartitionFit(const ModelFitRequest& request) {
   PartitionStartOptions options;
   ParseGrid(request.grid, options.cells);
   if (!IsPartitionChildKind(request.child))
-    throw InputError("--child '" + request.child + "': expected plane or quadric");
+    throw InputError("--child '" + request.child + "': expected plane, quadric or quadric-patch");
   options.child = request.child;
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);

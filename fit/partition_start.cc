@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "model/bernstein_conversion.h"
+
 namespace implicitfit {
 namespace {
 
@@ -47,17 +49,38 @@ std::vector<double> WorldChild(bool quadric, const double* theta, const Vec& c, 
   return q;
 }
 
+// quadric-patch child: the world polynomial of theta, NOT normalised (a patch's value is its
+// polynomial, so the children keep the linear start's common scale f ~ distance / s), as
+// degree-2 control points on the tetrahedron with vertices lo, lo + 3 d_k e_k (k = 1..3),
+// which holds the box [lo, lo + d] (x/dx + y/dy + z/dz <= 3 there).
+std::vector<double> WorldPatch(const double* theta, const Vec& c, double s, const Vec& lo,
+                               const Vec& d, Tetrahedron* tet) {
+  Eigen::Matrix3d A;
+  A << theta[0], theta[3], theta[4], theta[3], theta[1], theta[5], theta[4], theta[5], theta[2];
+  const Vec b(theta[6], theta[7], theta[8]);
+  CartesianQuadric q;
+  q.A = A / (s * s);
+  q.b = -A * c / (s * s) + b / s;
+  q.c = c.dot(A * c) / (s * s) - 2 * b.dot(c) / s + theta[9];
+  *tet = Tetrahedron(lo + 3 * d.x() * Vec::UnitX(), lo + 3 * d.y() * Vec::UnitY(),
+                     lo + 3 * d.z() * Vec::UnitZ(), lo);
+  std::vector<double> control = QuadricToBernstein(q, *tet, 2);
+  for (double v : control)
+    if (!std::isfinite(v)) return {};
+  return control;
+}
+
 }  // namespace
 
 bool IsPartitionChildKind(const std::string& child) {
-  return child == "plane" || child == "quadric";
+  return child == "plane" || child == "quadric" || child == "quadric-patch";
 }
 
 PartitionStart LinearPartitionStart(const std::vector<Vec>& points, const std::vector<Vec>& normals,
                                     const PartitionStartOptions& options) {
   if (!IsPartitionChildKind(options.child))
-    throw std::invalid_argument("the partition child must be plane or quadric, not '" +
-                                options.child + "'");
+    throw std::invalid_argument(
+        "the partition child must be plane, quadric or quadric-patch, not '" + options.child + "'");
   for (int k = 0; k < 3; ++k)
     if (options.cells[k] < 1) throw std::invalid_argument("every grid count must be >= 1");
   if (!(options.epsilon_fraction > 0 && options.epsilon_fraction <= 0.5))
@@ -67,7 +90,8 @@ PartitionStart LinearPartitionStart(const std::vector<Vec>& points, const std::v
     out.message = "the partition start needs points with normals";
     return out;
   }
-  const bool quadric = options.child == "quadric";
+  const bool patch = options.child == "quadric-patch";
+  const bool quadric = options.child == "quadric" || patch;
   Vec lo = points[0], hi = points[0];
   for (const Vec& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   if (options.has_box) {
@@ -161,6 +185,20 @@ PartitionStart LinearPartitionStart(const std::vector<Vec>& points, const std::v
   Model& m = out.model;
   std::vector<int> children;
   for (int c = 0; c < num_cells; ++c) {
+    if (patch) {  // the cell grown by eps on every side (its blend zone), in a tetrahedron
+      const Vec step = (hi - lo).cwiseQuotient(Vec(nx, ny, nz));
+      const Vec index(c % nx, (c / nx) % ny, c / (nx * ny));
+      const Vec cell_lo = lo + index.cwiseProduct(step) - Vec::Constant(eps);
+      Tetrahedron tet;
+      std::vector<double> control = WorldPatch(theta.data() + c * kb, centre, s, cell_lo,
+                                               step + Vec::Constant(2 * eps), &tet);
+      if (control.empty()) {
+        out.message = "the partition start found a degenerate child";
+        return out;
+      }
+      children.push_back(m.AddBernsteinPatch(2, tet, control));
+      continue;
+    }
     std::vector<double> p = WorldChild(quadric, theta.data() + c * kb, centre, s);
     if (p.empty()) p = WorldChild(quadric, global.data(), centre, s);
     if (p.empty()) {

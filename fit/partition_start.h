@@ -1,4 +1,5 @@
-// Linear start of `fit --model partition --grid AxBxC [--child plane|quadric]` (NOTES.md LP-1):
+// Linear start of `fit --model partition --grid AxBxC [--child plane|quadric|quadric-patch]`
+// (NOTES.md LP-1):
 //   1. A x B x C cells at equal spacing over the cloud's bounding box enlarged 5% on every side
 //      (or a given box): cuts t_i = lo + i (hi - lo) / A, i = 1..A-1 per axis;
 //      eps = 0.25 * the smallest cell width (so the >= 2 eps rule holds with margin);
@@ -12,7 +13,10 @@
 //      (1e-6 of the mean diagonal) pulls every child towards one global child fitted the same
 //      way, so cells without points get that child instead of a singular system.
 //   3. The children become plane / quadric nodes (their evaluators normalise: plane
-//      (a . x - d) / |a|, quadric q / |grad q|), under one `partition` node (order 3 by
+//      (a . x - d) / |a|, quadric q / |grad q|) or degree-2 Bernstein patches of the same
+//      quadric (quadric-patch: control points on a tetrahedron holding the cell grown by eps,
+//      values not normalised, so every child keeps the common scale f ~ distance / s), under
+//      one `partition` node (order 3 by
 //      default). The tree fitter (fit/tree_fitter.h) then refines children and eps, eps
 //      reparameterised as (w_min / 2) sigmoid(b) so every iterate keeps cells >= 2 eps.
 #pragma once
@@ -27,7 +31,7 @@ namespace implicitfit {
 
 struct PartitionStartOptions {
   int cells[3] = {1, 1, 1};     // A, B, C >= 1
-  std::string child = "plane";  // plane | quadric
+  std::string child = "plane";  // plane | quadric | quadric-patch
   int order = 3;                // n of H_n
   bool has_box = false;         // use box_min / box_max instead of the cloud's box + 5%
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();

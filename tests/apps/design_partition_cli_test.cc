@@ -91,6 +91,29 @@ TEST(PartitionFitCommand, QuadricChildrenFitAnEllipsoidToTheNoise) {
   EXPECT_LT(ReadJson(dir + "/report.json")["rms_distance"].get<double>(), 0.003);
 }
 
+TEST(PartitionFitCommand, QuadricPatchChildrenFitAnEllipsoidToTheNoise) {
+  const std::string dir = testsupport::ScratchDir("partition_quadric_patch");
+  WriteText(dir + "/truth.json", R"({"format": "implicitfit-model", "version": 1, "root":
+      {"type": "ellipsoid", "center": [0, 0, 0], "radii": [1, 0.7, 0.5],
+       "axes": [[1, 0, 0], [0, 1, 0]]}})");
+  const auto s =
+      RunCommand(kCli + " sample " + dir +
+                 "/truth.json --count 3000 --noise 0.002 --seed 4 --out " + dir + "/cloud.xyz");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const auto f = RunCommand(kCli + " fit " + dir +
+                            "/cloud.xyz --model partition --grid 2x1x1 --child quadric-patch " +
+                            "--out " + dir + "/fit.json --report " + dir + "/report.json");
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const auto model = ReadJson(dir + "/fit.json");
+  ASSERT_EQ(model["root"]["children"].size(), 2u);
+  for (const auto& child : model["root"]["children"]) {
+    EXPECT_EQ(child["type"], "bernstein_patch");
+    EXPECT_EQ(child["degree"], 2);
+  }
+  // Two degree-2 patches (each an exact quadric) of one ellipsoid: the fit reaches the noise.
+  EXPECT_LT(ReadJson(dir + "/report.json")["rms_distance"].get<double>(), 0.003);
+}
+
 TEST(PartitionFitCommand, RefusesABadGridWithoutOutput) {
   const std::string dir = SampleBox("partition_bad");
   for (const std::string args :
