@@ -20,14 +20,16 @@
 //    current RMS), w_n (grad f(p_i)/g_i - n_i) with w_n = normal_weight x diagonal / 10, the
 //    offset rows of step 1 with weight 0.1 (they fix the scale of f, which r_i leaves free) and
 //    the far-field rows; until the RMS improves by less than 0.5% (at most max_iterations);
-//    the best iterate is kept, so the result is never worse than the start. Then the exact
-//    projection onto the continuity space (fit/continuity_projection.h).
-//    Why not Ceres here (as the first version did, one parameter block per tetrahedron): with
-//    the continuity rows as stiff penalties (weight 1e4) Levenberg-Marquardt did not converge
-//    in 100 iterations on kitten (216 patches: 30 s) and its iterate used the slack of the
-//    penalty (continuity defect 2.8e-5): RMS 0.0026 before the projection, 0.092 after it, so the
-//    start (0.0199) was kept. Each linearised step is solved exactly instead (defect ~1e-6,
-//    which the projection removes without changing the RMS): kitten 0.0199 -> 0.0094 in 4.5 s.
+//    the best iterate is kept, so the result is never worse than the start. When these steps make
+//    no progress (< 0.5%; on grids of at most 1 500 tetrahedra), the Ceres refinement of step 3
+//    without the guard runs from the result and is kept when better after the projection. Then the
+//    exact projection onto the continuity space (fit/continuity_projection.h). Why not Ceres here
+//    (as the first version did, one parameter block per tetrahedron): with the continuity rows as
+//    stiff penalties (weight 1e4) Levenberg-Marquardt did not converge in 100 iterations on kitten
+//    (216 patches: 30 s) and its iterate used the slack of the penalty (continuity defect 2.8e-5):
+//    RMS 0.0026 before the projection, 0.092 after it, so the start (0.0199) was kept. Each
+//    linearised step is solved exactly instead (defect ~1e-6, which the projection removes without
+//    changing the RMS): kitten 0.0199 -> 0.0094 in 4.5 s.
 // 3. --convex (C1 only; Ceres, one parameter block per tetrahedron, Cauchy loss at 3x the
 //    step-1 RMS, the continuity rows as penalties (weight continuity_weight) and the offset rows
 //    with weight 0.1; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
