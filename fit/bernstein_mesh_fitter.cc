@@ -313,6 +313,19 @@ std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vect
   return rows;
 }
 
+// Far-field points where f has the opposite sign of the row's target.
+long long FarFieldSignErrors(const BernsteinGrid& grid, int k, const std::vector<double>& b,
+                             const std::vector<FarFieldRow>& rows) {
+  const long long n = NumBernsteinControlPoints(k);
+  long long errors = 0;
+  for (const FarFieldRow& r : rows) {
+    double tau[4];
+    const long long t = grid.Locate(r.x.data(), tau);
+    errors += BernsteinPatch::EvaluateBarycentric(k, b.data() + t * n, tau) * r.target < 0;
+  }
+  return errors;
+}
+
 void AddFarFieldRows(const std::vector<FarFieldRow>& rows, double weight,
                      DomainLeastSquares* solver) {
   for (const FarFieldRow& r : rows) solver->AddValueRow(r.x, weight, r.target);
@@ -606,7 +619,10 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
       const double polished_defect =
           ProjectOntoContinuitySpace(grid, k, options.continuity, &polished);
       const double polished_rms = MeshRms(grid, k, polished, points, normals, nullptr);
-      if (polished_rms < rms) {
+      // Ceres has no far-field rows: keep its result only if it adds no sign error at the
+      // far-field points (no spurious sheet in empty space).
+      if (polished_rms < rms &&
+          FarFieldSignErrors(grid, k, polished, far) <= FarFieldSignErrors(grid, k, *b, far)) {
         *b = polished;
         rms = polished_rms;
         *defect = polished_defect;
