@@ -594,7 +594,10 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const std::vector<bool> c2_keep = EmptyFaceRows(c2, data);
 
   DomainLeastSquares solver(grid, k, options.continuity, options, c2, c2_keep);
-  const std::vector<FarFieldRow> far = FarFieldRows(grid, points, normals, 2 * d);
+  // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
+  const std::vector<FarFieldRow> far = options.far_field_weight > 0
+                                           ? FarFieldRows(grid, points, normals, 2 * d)
+                                           : std::vector<FarFieldRow>();
   const double far_weight = options.far_field_weight;
   std::vector<double> b = LinearInitialisation(points, normals, d, far, far_weight, &solver);
   ProjectOntoContinuitySpace(grid, k, options.continuity, &b);

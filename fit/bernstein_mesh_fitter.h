@@ -64,7 +64,7 @@ struct MeshFitOptions {
   int max_iterations = 100;        // Ceres iterations
   double continuity_weight = 1e4;  // weight of the continuity rows before the projection
   double smoothing_weight = 0.1;   // weight of the C2 rows on faces of empty tetrahedra
-  double far_field_weight = 1.0;   // weight of the far-field rows (header, step 1)
+  double far_field_weight = 1.0;   // weight of the far-field rows (header, step 1); 0: none
   bool IsValid(std::string* error) const;
 };
 
