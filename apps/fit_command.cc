@@ -76,11 +76,11 @@ CommandAction AddFitCommand(CLI::App& app) {
       ->delimiter(',')
       ->expected(12)
       ->group("Bernstein patches");
-  auto* cells_opt =
-      cmd->add_option("--cells", a->cells,
-                      "patch-mesh: cubes along the longest edge of the cloud's box (default 4)")
-          ->check(CLI::Range(1, 200))
-          ->group("Bernstein patches");
+  auto* cells_opt = cmd->add_option("--cells", a->cells,
+                                    "patch-mesh: cubes along the longest edge of the cloud's box "
+                                    "(default 8; 4 with --convex)")
+                        ->check(CLI::Range(1, 200))
+                        ->group("Bernstein patches");
   cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length (instead of --cells)")
       ->check(CLI::PositiveNumber)
       ->excludes(cells_opt)

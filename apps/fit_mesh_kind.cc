@@ -45,6 +45,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
                                  {"patches", r.tetrahedra},
                                  {"rms_distance", r.rms},
                                  {"initial_rms_distance", r.initial_rms},
+                                 {"unconstrained_rms_distance", r.unconstrained_rms},
                                  {"mean_normal_angle_deg", r.mean_normal_angle_deg},
                                  {"continuity_defect", r.continuity_defect},
                                  {"convex_constraint", options.convex},
@@ -79,6 +80,9 @@ int RunMeshFit(const ModelFitRequest& request) {
       rep["mean_normal_angle_deg"].get<double>(), rep["continuity_defect"].get<double>(),
       fit.certified_convex ? "yes" : "no", rep["certified_tetrahedra"].get<long long>(),
       rep["min_eigenvalue"].get<double>(), rep["seconds"].get<double>());
+  if (request.convex)
+    std::printf("unconstrained fit (no convexity constraint): rms %.6g\n",
+                rep["unconstrained_rms_distance"].get<double>());
   return 0;
 }
 

@@ -2,11 +2,13 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -171,52 +173,33 @@ std::vector<bool> EmptyFaceRows(const ContinuityRows& c2, const PointData& data)
   return keep;
 }
 
-// Step 1 (see the header). Returns b (not yet projected).
-std::vector<double> LinearInitialisation(const BernsteinGrid& grid, int k, int continuity,
-                                         const std::vector<Vec>& points,
-                                         const std::vector<Vec>& normals, double d,
-                                         const MeshFitOptions& options, const ContinuityRows& c2,
-                                         const std::vector<bool>& c2_keep) {
-  const long long n = NumBernsteinControlPoints(k);
-  const std::vector<long long> domain = DomainPointIndices(grid, k);
-  const long long nd = NumDomainPoints(grid, k);
-  // Data rows in domain-point unknowns: sum_j B_j(tau) w[domain[t n + j]] = target.
-  std::vector<Eigen::Triplet<double>> trip;
-  std::vector<double> rhs;
-  std::vector<double> basis(static_cast<size_t>(n));
-  auto add_row = [&](const Vec& x, double target) {
-    double tau[4];
-    const long long t = grid.Locate(x.data(), tau);
-    BasisValues(k, tau, basis.data());
-    const long long row = static_cast<long long>(rhs.size());
-    for (long long j = 0; j < n; ++j) trip.emplace_back(row, domain[t * n + j], basis[j]);
-    rhs.push_back(target);
-  };
-  for (size_t i = 0; i < points.size(); ++i) {
-    add_row(points[i], 0.0);
-    add_row(points[i] + d * normals[i], d);
-    add_row(points[i] - d * normals[i], -d);
-  }
-  SparseMatrix A(static_cast<long>(rhs.size()), nd);
-  A.setFromTriplets(trip.begin(), trip.end());
-  const Eigen::Map<const Eigen::VectorXd> y(rhs.data(), static_cast<long>(rhs.size()));
-  // Selection P (control point -> domain point) to move rows of C onto w.
-  SparseMatrix P(static_cast<long>(domain.size()), nd);
-  {
+// Weighted linear least squares in the global domain points w (b = P w: C0 exact,
+// model/bernstein_mesh_continuity.h) with the C1 rows as weighted equations (continuity_weight)
+// and the soft C2 rows on faces of empty tetrahedra (smoothing_weight), solved by sparse
+// Cholesky of the normal equations (steps 1 and 2 of the header).
+class DomainLeastSquares {
+ public:
+  DomainLeastSquares(const BernsteinGrid& grid, int k, int continuity,
+                     const MeshFitOptions& options, const ContinuityRows& c2,
+                     const std::vector<bool>& c2_keep)
+      : grid_(grid),
+        k_(k),
+        n_(NumBernsteinControlPoints(k)),
+        domain_(DomainPointIndices(grid, k)),
+        nd_(NumDomainPoints(grid, k)),
+        basis_(static_cast<size_t>(n_)) {
+    P_.resize(static_cast<long>(domain_.size()), nd_);
     std::vector<Eigen::Triplet<double>> tp;
-    for (size_t i = 0; i < domain.size(); ++i)
-      tp.emplace_back(static_cast<long>(i), domain[i], 1.0);
-    P.setFromTriplets(tp.begin(), tp.end());
-  }
-  SparseMatrix H = SparseMatrix(A.transpose()) * A;
-  Eigen::VectorXd g = A.transpose() * y;
-  if (continuity == 1) {
-    const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1);
-    const SparseMatrix G = SparseMatrix(c1.C) * P;
-    H += options.continuity_weight * options.continuity_weight * SparseMatrix(G.transpose()) * G;
-  }
-  // C2 smoothing: a weight per row relative to the data's scale (rows per non-empty tetrahedron).
-  {
+    for (size_t i = 0; i < domain_.size(); ++i)
+      tp.emplace_back(static_cast<long>(i), domain_[i], 1.0);
+    P_.setFromTriplets(tp.begin(), tp.end());
+    fixed_.resize(nd_, nd_);
+    if (continuity == 1) {
+      const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1);
+      const SparseMatrix G = SparseMatrix(c1.C) * P_;
+      fixed_ +=
+          options.continuity_weight * options.continuity_weight * SparseMatrix(G.transpose()) * G;
+    }
     std::vector<Eigen::Triplet<double>> ts;
     long long r = 0;
     for (int row = 0; row < c2.C.rows(); ++row) {
@@ -227,16 +210,139 @@ std::vector<double> LinearInitialisation(const BernsteinGrid& grid, int k, int c
     }
     SparseMatrix S(r, c2.C.cols());
     S.setFromTriplets(ts.begin(), ts.end());
-    const SparseMatrix SP = S * P;
-    H += options.smoothing_weight * options.smoothing_weight * SparseMatrix(SP.transpose()) * SP;
+    const SparseMatrix SP = S * P_;
+    fixed_ +=
+        options.smoothing_weight * options.smoothing_weight * SparseMatrix(SP.transpose()) * SP;
   }
-  // A tiny ridge keeps the system definite where nothing else reaches (far corners).
-  const double ridge = 1e-10 * std::max(1.0, H.diagonal().maxCoeff());
-  for (long long i = 0; i < nd; ++i) H.coeffRef(i, i) += ridge;
-  Eigen::SimplicialLDLT<SparseMatrix> solver(H);
-  Eigen::VectorXd w = solver.solve(g);
-  const Eigen::VectorXd b = P * w;
-  return std::vector<double>(b.data(), b.data() + b.size());
+
+  // The row weight (f(x) - target).
+  void AddValueRow(const Vec& x, double weight, double target) {
+    double tau[4];
+    const long long t = grid_.Locate(x.data(), tau);
+    BasisValues(k_, tau, basis_.data());
+    for (long long j = 0; j < n_; ++j)
+      trip_.emplace_back(rows_, domain_[t * n_ + j], weight * basis_[j]);
+    rhs_.push_back(weight * target);
+    ++rows_;
+  }
+
+  // The three rows weight (grad f(x) - target); grad B_j by the patch's derivatives of unit
+  // control vectors.
+  void AddGradientRows(const Vec& x, double weight, const Vec& target) {
+    double tau[4];
+    const long long t = grid_.Locate(x.data(), tau);
+    const Tetrahedron tet = grid_.TetrahedronOf(t);
+    unit_.assign(static_cast<size_t>(n_), 0.0);
+    for (long long j = 0; j < n_; ++j) {
+      unit_[j] = 1.0;
+      Vec g;
+      BernsteinPatch::Derivatives(k_, tet, unit_.data(), x.data(), &g);
+      unit_[j] = 0.0;
+      for (int c = 0; c < 3; ++c) trip_.emplace_back(rows_ + c, domain_[t * n_ + j], weight * g[c]);
+    }
+    for (int c = 0; c < 3; ++c) rhs_.push_back(weight * target[c]);
+    rows_ += 3;
+  }
+
+  // Solves with the rows added since the last Solve (then drops them); returns b = P w.
+  std::vector<double> Solve() {
+    SparseMatrix A(static_cast<long>(rows_), nd_);
+    A.setFromTriplets(trip_.begin(), trip_.end());
+    const Eigen::Map<const Eigen::VectorXd> y(rhs_.data(), static_cast<long>(rhs_.size()));
+    SparseMatrix H = SparseMatrix(A.transpose()) * A + fixed_;
+    const Eigen::VectorXd g = A.transpose() * y;
+    // A tiny ridge keeps the system definite where nothing else reaches (far corners).
+    const double ridge = 1e-10 * std::max(1.0, H.diagonal().maxCoeff());
+    for (long long i = 0; i < nd_; ++i) H.coeffRef(i, i) += ridge;
+    Eigen::VectorXd w;
+    // CHOLMOD's supernodal Cholesky (SuiteSparse, linked for the projection already) is an order
+    // of magnitude faster than Eigen's simplicial one on these 3-D grids; the latter is the
+    // fallback when the matrix is not numerically positive definite.
+    Eigen::CholmodSupernodalLLT<SparseMatrix> cholmod(H);
+    if (cholmod.info() == Eigen::Success) w = cholmod.solve(g);
+    if (cholmod.info() != Eigen::Success || !w.allFinite()) {
+      Eigen::SimplicialLDLT<SparseMatrix> ldlt(H);
+      w = ldlt.solve(g);
+    }
+    const Eigen::VectorXd b = P_ * w;
+    trip_.clear();
+    rhs_.clear();
+    rows_ = 0;
+    return std::vector<double>(b.data(), b.data() + b.size());
+  }
+
+ private:
+  const BernsteinGrid& grid_;
+  int k_;
+  long long n_;
+  std::vector<long long> domain_;
+  long long nd_;
+  SparseMatrix P_, fixed_;
+  std::vector<Eigen::Triplet<double>> trip_;
+  std::vector<double> rhs_, basis_, unit_;
+  long long rows_ = 0;
+};
+
+// Far-field rows (empty tetrahedra): at the centroid c of every tetrahedron that holds no point,
+// f(c) = (c - p) . n_p with p the nearest input point (Hoppe's signed tangent-plane distance), so
+// that f keeps the outside/inside sign of the closest data away from the surface and no spurious
+// sheet crosses empty cells or the box. Nearest point by brute force (empty tetrahedra x points:
+// below 10^9 operations for the grids used here; fit/ has no spatial index).
+struct FarFieldRow {
+  Vec x;
+  double target;
+};
+
+std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vector<Vec>& points,
+                                      const std::vector<Vec>& normals, double band) {
+  std::vector<FarFieldRow> rows;
+  const int per = 2;  // samples per cube edge
+  const double step = grid.cell / per;
+  for (int i = 0; i <= per * grid.cells[0]; ++i)
+    for (int j = 0; j <= per * grid.cells[1]; ++j)
+      for (int l = 0; l <= per * grid.cells[2]; ++l) {
+        const Vec c = grid.origin + step * Vec(i, j, l);
+        size_t best = 0;
+        double best_d2 = std::numeric_limits<double>::infinity();
+        for (size_t q = 0; q < points.size(); ++q) {
+          const double d2 = (points[q] - c).squaredNorm();
+          if (d2 < best_d2) best_d2 = d2, best = q;
+        }
+        if (best_d2 > band * band) rows.push_back({c, (c - points[best]).dot(normals[best])});
+      }
+  return rows;
+}
+
+// Far-field points where f has the opposite sign of the row's target.
+long long FarFieldSignErrors(const BernsteinGrid& grid, int k, const std::vector<double>& b,
+                             const std::vector<FarFieldRow>& rows) {
+  const long long n = NumBernsteinControlPoints(k);
+  long long errors = 0;
+  for (const FarFieldRow& r : rows) {
+    double tau[4];
+    const long long t = grid.Locate(r.x.data(), tau);
+    errors += BernsteinPatch::EvaluateBarycentric(k, b.data() + t * n, tau) * r.target < 0;
+  }
+  return errors;
+}
+
+void AddFarFieldRows(const std::vector<FarFieldRow>& rows, double weight,
+                     DomainLeastSquares* solver) {
+  for (const FarFieldRow& r : rows) solver->AddValueRow(r.x, weight, r.target);
+}
+
+// Step 1: f(p_i) = 0, f(p_i +- d n_i) = +-d. Returns b (not yet projected).
+std::vector<double> LinearInitialisation(const std::vector<Vec>& points,
+                                         const std::vector<Vec>& normals, double d,
+                                         const std::vector<FarFieldRow>& far, double far_weight,
+                                         DomainLeastSquares* solver) {
+  AddFarFieldRows(far, far_weight, solver);
+  for (size_t i = 0; i < points.size(); ++i) {
+    solver->AddValueRow(points[i], 1.0, 0.0);
+    solver->AddValueRow(points[i] + d * normals[i], 1.0, d);
+    solver->AddValueRow(points[i] - d * normals[i], 1.0, -d);
+  }
+  return solver->Solve();
 }
 
 double MeshRms(const BernsteinGrid& grid, int k, const std::vector<double>& b,
@@ -257,6 +363,66 @@ double MeshRms(const BernsteinGrid& grid, int k, const std::vector<double>& b,
   if (mean_angle)
     *mean_angle = normals.empty() ? -1.0 : angles / std::max<size_t>(1, points.size());
   return std::sqrt(ss / std::max<size_t>(1, points.size()));
+}
+
+// Step 2 (unconstrained): Gauss-Newton on the geometric residual f/|grad f| with the gradient
+// norm g_i frozen at the current iterate (a linear problem: iteratively reweighted least
+// squares, each iteration one DomainLeastSquares solve). Rows per point: c_i f(p_i)/g_i (c_i the
+// Cauchy weight 1/sqrt(1 + (r_i/s)^2), s = loss_factor x current RMS), the normal rows
+// w_n (grad f(p_i)/g_i - n_i) and the offset rows w_s (f(p_i +- d n_i) -+ d) that fix the
+// scale of f. Stops when the RMS improves by less than 0.5% or after max_iterations; returns
+// the best iterate (never worse than the start). Iterations used in *iterations.
+std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
+                                     const std::vector<Vec>& points,
+                                     const std::vector<Vec>& normals, double d,
+                                     const MeshFitOptions& options, std::vector<double> b,
+                                     const std::vector<FarFieldRow>& far, double far_weight,
+                                     DomainLeastSquares* solver, int* iterations) {
+  const long long n = NumBernsteinControlPoints(k);
+  const double normal_weight = options.normal_weight * 10 * d;  // normal_weight x diagonal / 10
+  constexpr double scale_weight = 0.1, loss_factor = 3.0;
+  double rms = MeshRms(grid, k, b, points, normals, nullptr);
+  std::vector<double> best = b;
+  double best_rms = rms;
+  *iterations = 0;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    const double s = loss_factor * rms;
+    AddFarFieldRows(far, far_weight, solver);
+    for (size_t i = 0; i < points.size(); ++i) {
+      double tau[4];
+      const long long t = grid.Locate(points[i].data(), tau);
+      Vec g;
+      const double f = BernsteinPatch::Derivatives(k, grid.TetrahedronOf(t), b.data() + t * n,
+                                                   points[i].data(), &g);
+      const double gn = std::max(g.norm(), 1e-12);
+      const double r = f / gn;
+      const double c = s > 0 ? 1.0 / std::sqrt(1.0 + (r / s) * (r / s)) : 1.0;
+      solver->AddValueRow(points[i], c / gn, 0.0);
+      if (normal_weight > 0)
+        solver->AddGradientRows(points[i], normal_weight * c / gn, gn * normals[i]);
+      solver->AddValueRow(points[i] + d * normals[i], scale_weight, d);
+      solver->AddValueRow(points[i] - d * normals[i], scale_weight, -d);
+    }
+    const std::vector<double> full = solver->Solve();
+    ++*iterations;
+    // Backtracking along the step (the frozen-gradient problem can overshoot where |grad f|
+    // changes fast): halve it up to 4 times until the RMS decreases.
+    double next = rms;
+    std::vector<double> trial(b.size());
+    for (double step = 1.0; step >= 1.0 / 16; step *= 0.5) {
+      for (size_t j = 0; j < b.size(); ++j) trial[j] = b[j] + step * (full[j] - b[j]);
+      next = MeshRms(grid, k, trial, points, normals, nullptr);
+      if (next < rms) break;
+    }
+    b = trial;
+    if (next < best_rms) {
+      best = b;
+      best_rms = next;
+    }
+    if (!(next < 0.995 * rms)) break;
+    rms = next;
+  }
+  return best;
 }
 
 template <int N>
@@ -414,7 +580,10 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   result.degree = k;
   result.continuity = options.continuity;
   result.grid =
-      options.has_grid ? options.grid : MeshGridForCloud(points, options.cells, options.cell);
+      options.has_grid
+          ? options.grid
+          : MeshGridForCloud(points, options.cells > 0 ? options.cells : (options.convex ? 4 : 8),
+                             options.cell);
   const BernsteinGrid& grid = result.grid;
   result.tetrahedra = grid.NumTetrahedra();
   const double diagonal = (grid.BoxMax() - grid.BoxMin()).norm();
@@ -424,13 +593,52 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const ContinuityRows c2 = BernsteinContinuityRows(grid, k, 2, 2);
   const std::vector<bool> c2_keep = EmptyFaceRows(c2, data);
 
-  std::vector<double> b =
-      LinearInitialisation(grid, k, options.continuity, points, normals, d, options, c2, c2_keep);
+  DomainLeastSquares solver(grid, k, options.continuity, options, c2, c2_keep);
+  // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
+  const std::vector<FarFieldRow> far = options.far_field_weight > 0
+                                           ? FarFieldRows(grid, points, normals, 2 * d)
+                                           : std::vector<FarFieldRow>();
+  const double far_weight = options.far_field_weight;
+  std::vector<double> b = LinearInitialisation(points, normals, d, far, far_weight, &solver);
   ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   result.initial_rms = MeshRms(grid, k, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * result.initial_rms, 1e-9 * diagonal);
 
+  // Step 2: the linearised refinement; when it makes no progress (its frozen-gradient steps can
+  // point uphill, e.g. on the torus of the tests) the Ceres refinement on the exact residuals,
+  // projected, kept when better. Returns the RMS; *defect the continuity defect.
+  auto unconstrained = [&](std::vector<double>* b, int* iterations, double* defect) {
+    *b = RefineLinearised(grid, k, points, normals, d, options, *b, far, far_weight, &solver,
+                          iterations);
+    *defect = ProjectOntoContinuitySpace(grid, k, options.continuity, b);
+    double rms = MeshRms(grid, k, *b, points, normals, nullptr);
+    // (Not on grids above 1 500 tetrahedra, where the Ceres fallback takes minutes, nor when the
+    // start already fits to rounding.)
+    if (!(rms < 0.995 * result.initial_rms) && grid.NumTetrahedra() <= 1500 &&
+        result.initial_rms > 1e-9 * diagonal) {
+      std::vector<double> polished = *b;
+      *iterations += Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep,
+                            options, loss_scale, d, nullptr, &polished);
+      const double polished_defect =
+          ProjectOntoContinuitySpace(grid, k, options.continuity, &polished);
+      const double polished_rms = MeshRms(grid, k, polished, points, normals, nullptr);
+      // Ceres has no far-field rows: keep its result only if it adds no sign error at the
+      // far-field points (no spurious sheet in empty space).
+      if (polished_rms < rms &&
+          FarFieldSignErrors(grid, k, polished, far) <= FarFieldSignErrors(grid, k, *b, far)) {
+        *b = polished;
+        rms = polished_rms;
+        *defect = polished_defect;
+      }
+    }
+    return rms;
+  };
   if (options.convex) {
+    // The unconstrained fit (step 2) for comparison: what the convexity constraint costs.
+    std::vector<double> free_fit = b;
+    int free_iterations = 0;
+    double free_defect = 0;
+    result.unconstrained_rms = unconstrained(&free_fit, &free_iterations, &free_defect);
     if (!ConvexStart(grid, k, points, normals, &b, &result.message)) return result;
     std::vector<double> margins(static_cast<size_t>(grid.NumTetrahedra()));
     for (long long t = 0; t < grid.NumTetrahedra(); ++t) {
@@ -443,17 +651,8 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
                                d, &margins, &b);
     result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
   } else {
-    // The refinement must not end worse than the (projected) initialisation it started from
-    // (it can on real scans with inconsistent normals); keep the better of the two.
-    const std::vector<double> initial = b;
-    result.iterations = Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep,
-                               options, loss_scale, d, nullptr, &b);
-    result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
-    if (!(MeshRms(grid, k, b, points, normals, nullptr) <= result.initial_rms)) {
-      b = initial;
-      result.continuity_defect = ContinuityDefect(grid, k, options.continuity, b.data());
-      result.kept_initialisation = true;
-    }
+    const double rms = unconstrained(&b, &result.iterations, &result.continuity_defect);
+    result.kept_initialisation = !(rms < result.initial_rms);
   }
   result.control_points = b;
   result.rms = MeshRms(grid, k, b, points, normals, &result.mean_normal_angle_deg);

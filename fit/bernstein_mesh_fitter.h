@@ -5,26 +5,42 @@
 // longest extent on a flat axis); cube edge h = --cell, or (--cells n) the longest grown
 // extent / n; n_a = ceil(extent_a / h) cubes per axis, centred on the box.
 // 1. Linear initialisation, one sparse least-squares problem: f(p_i) = 0 and
-//    f(p_i +- d n_i) = +-d (d = 1% of the box diagonal), linear in the control points. It is
-//    solved on the global domain points (b = P w: C0 exact, model/bernstein_mesh_continuity.h)
-//    with the C1 rows as weighted equations (weight continuity_weight) and soft C2 rows
-//    (smoothing_weight) on the faces of tetrahedra that hold no point, so holes close smoothly,
-//    by sparse Cholesky of the normal equations; then the exact projection onto ker C.
-// 2. Ceres refinement: one parameter block per tetrahedron; per point r0 = f/|grad f| and the
-//    normal term w (grad f/|grad f| - n) with a Cauchy loss at 3x the initial RMS; the C0/C1
-//    rows of every interior face as one linear residual block (weight continuity_weight)
-//    coupling its two tetrahedra; the C2 smoothing rows as above; the offset rows of step 1
-//    with weight 0.1 (they fix the scale of f, which the geometric residuals leave free and the
-//    continuity rows would otherwise shrink), under the same Cauchy loss. Then the exact
-//    projection onto the continuity space (fit/continuity_projection.h); if the result is worse
-//    than the projected initialisation, that is kept (kept_initialisation).
-// 3. --convex (C1 only; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
+//    f(p_i +- d n_i) = +-d (d = 1% of the box diagonal), linear in the control points, plus the
+//    far-field rows: at the points of a lattice of spacing h/2 farther than 2d from every input
+//    point, f(x) = (x - p) . n_p with p the nearest input point (Hoppe's signed tangent-plane
+//    distance, weight far_field_weight), so that f keeps the sign of the nearest data away from
+//    the surface and no spurious sheet crosses empty space or the box. It is solved on the
+//    global domain points (b = P w: C0 exact, model/bernstein_mesh_continuity.h) with the C1
+//    rows as weighted equations (weight continuity_weight) and soft C2 rows (smoothing_weight)
+//    on the faces of tetrahedra that hold no point, so holes close smoothly, by sparse Cholesky
+//    (CHOLMOD) of the normal equations; then the exact projection onto ker C.
+// 2. Refinement (unconstrained): Gauss-Newton on r_i = f(p_i)/|grad f(p_i)| with |grad f|
+//    frozen at the current iterate, i.e. iteratively reweighted linear least squares in the
+//    same domain-point unknowns as step 1: rows c_i f(p_i)/g_i (c_i the Cauchy weight at 3x the
+//    current RMS), w_n (grad f(p_i)/g_i - n_i) with w_n = normal_weight x diagonal / 10, the
+//    offset rows of step 1 with weight 0.1 (they fix the scale of f, which r_i leaves free) and
+//    the far-field rows; until the RMS improves by less than 0.5% (at most max_iterations);
+//    the best iterate is kept, so the result is never worse than the start. When these steps make
+//    no progress (< 0.5%; on grids of at most 1 500 tetrahedra), the Ceres refinement of step 3
+//    without the guard runs from the result and is kept when better after the projection. Then the
+//    exact projection onto the continuity space (fit/continuity_projection.h). Why not Ceres here
+//    (as the first version did, one parameter block per tetrahedron): with the continuity rows as
+//    stiff penalties (weight 1e4) Levenberg-Marquardt did not converge in 100 iterations on kitten
+//    (216 patches: 30 s) and its iterate used the slack of the penalty (continuity defect 2.8e-5):
+//    RMS 0.0026 before the projection, 0.092 after it, so the start (0.0199) was kept. Each
+//    linearised step is solved exactly instead (defect ~1e-6, which the projection removes without
+//    changing the RMS): kitten 0.0199 -> 0.0094 in 4.5 s.
+// 3. --convex (C1 only; Ceres, one parameter block per tetrahedron, Cauchy loss at 3x the
+//    step-1 RMS, the continuity rows as penalties (weight continuity_weight) and the offset rows
+//    with weight 0.1; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
 //    f convex on the box): start from the certified convex degree-2 patch fit
 //    (fit/patch_fitter.h) on the enclosing tetrahedron, restricted to every tetrahedron and
 //    elevated to degree k (a global quadric: C-infinity, certified on every tetrahedron), so
 //    the start is feasible; a guard rejects every step after which some tetrahedron's
 //    smallest A^mu eigenvalue falls below the margin; after the projection every tetrahedron
-//    is re-certified and the continuity defect checked. Failure => success = false.
+//    is re-certified and the continuity defect checked. Failure => success = false. The
+//    unconstrained fit (step 2) is also run, for its RMS (unconstrained_rms: the price of
+//    convexity; it costs a fraction of the guarded refinement).
 #pragma once
 
 #include <Eigen/Core>
@@ -39,7 +55,7 @@ namespace implicitfit {
 struct MeshFitOptions {
   int degree = 3;         // 2..5 (C1 wants >= 3: C1 quadratics are nearly global)
   int cells = 0;          // cubes along the longest box edge (used when cell == 0)
-  double cell = 0.0;      // cube edge h; 0: from cells (default 4 cubes)
+  double cell = 0.0;      // cube edge h; 0: from cells (default 8 cubes, 4 with --convex)
   bool has_grid = false;  // use `grid` as given instead of the cloud's box
   BernsteinGrid grid;
   int continuity = 1;              // 0 or 1
@@ -48,6 +64,7 @@ struct MeshFitOptions {
   int max_iterations = 100;        // Ceres iterations
   double continuity_weight = 1e4;  // weight of the continuity rows before the projection
   double smoothing_weight = 0.1;   // weight of the C2 rows on faces of empty tetrahedra
+  double far_field_weight = 1.0;   // weight of the far-field rows (header, step 1); 0: none
   bool IsValid(std::string* error) const;
 };
 
@@ -60,6 +77,7 @@ struct MeshFitResult {
   std::vector<double> control_points;  // all tetrahedra, model/bernstein_mesh.h layout
   double rms = 0.0;                    // RMS of f/|grad f| over all points
   double initial_rms = 0.0;            // after the linear initialisation
+  double unconstrained_rms = -1;       // --convex: RMS of the unconstrained fit (step 2), else -1
   double mean_normal_angle_deg = -1;   // mean angle between grad f and the normals
   double continuity_defect = 0.0;      // max |C b| / max |b| after the projection
   bool certified_convex = false;       // every tetrahedron certified (and, C1, defect tiny)
@@ -67,7 +85,7 @@ struct MeshFitResult {
   double min_eigenvalue = 0.0;  // smallest A^mu eigenvalue over all tetrahedra
   long long tetrahedra = 0;
   int iterations = 0;
-  bool kept_initialisation = false;  // the refinement ended worse: the initialisation is kept
+  bool kept_initialisation = false;  // the refinement did not improve: the initialisation is kept
   double seconds = 0.0;
   Model ToModel() const;
 };

@@ -1,0 +1,251 @@
+// fit --model patch-mesh + mesh vs PCL's Poisson (depth 7, 8) and PCL's marching cubes (Hoppe's
+// signed distance, 100^3 grid) on the same oriented clouds, in one run (issue 11):
+//   scans: ../shared/data/cgal kitten and oni (skipped when absent), the bundled sphere
+//          (datasets/data/cgal_sphere_single.xyz); judged against the input points;
+//   generated closed surfaces: ellipsoid (radii 1, 0.7, 0.5), torus (R 1, r 0.35), smooth union
+//          of two spheres (r 0.6 at x = -+0.4, delta 0.1); 20 000 points with noise 0.2% of
+//          their size, judged against the generating model and 20 000 noise-free points on it.
+// Figures (bench/mesh_judging.h): Chamfer and Hausdorff distance, normal consistency,
+// watertightness, triangles; patch count (implicitfit), seconds (fit + mesh; PCL: its
+// reconstruction; wall and CPU time: the machine may be shared), peak resident memory of the method
+// (each method runs in its own forked process: VmHWM of that process after the reconstruction, the
+// parent's few MB included). Patch-mesh rows use the fitter's defaults
+// (fit/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
+// side / 128; on convex inputs a second row fits with --convex and reports the certificate.
+//   build/bench/surface_comparison [--points 20000] [--seed 1] [--cells n] [--degree k]
+//                                [--only NAME-PART]
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/mesh_judging.h"
+#include "datasets/cloud_file.h"
+#include "datasets/model_mesher.h"
+#include "datasets/model_sampler.h"
+#include "fit/bernstein_mesh_fitter.h"
+
+namespace {
+
+using implicitfit::TriangleMesh;
+using Vec = Eigen::Vector3d;
+
+struct Case {
+  std::string name;
+  std::vector<Vec> points, normals;
+  bench::TruthSurface truth;
+  double size = 1;
+  bool convex = false;
+};
+
+// What a method's child process sends back.
+struct Outcome {
+  bench::Figures figures;
+  double peak_rss_mb = 0;
+  double cpu_seconds = 0;  // user + system time of the method
+  long long patches = 0;
+  int certified = -1;  // -1: not asked; 0/1: the convexity certificate
+  double fit_rms = 0, initial_rms = 0;
+  bool ok = false;
+};
+
+double CpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double PeakRssMb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+  return 0;
+}
+
+// Runs `method` (which fills the mesh and the implicitfit fields) in a forked child, timing it
+// and reading its peak memory before judging the mesh.
+Outcome RunIsolated(const Case& c, unsigned seed,
+                    const std::function<TriangleMesh(Outcome*)>& method) {
+  int fd[2];
+  if (pipe(fd) != 0) return {};
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    Outcome o;
+    const auto t0 = std::chrono::steady_clock::now();
+    const double cpu0 = CpuSeconds();
+    const TriangleMesh mesh = method(&o);
+    o.cpu_seconds = CpuSeconds() - cpu0;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    o.peak_rss_mb = PeakRssMb();
+    o.figures = bench::JudgeMesh(mesh, c.truth, seed);
+    o.figures.seconds = seconds;
+    o.ok = true;
+    const ssize_t written = write(fd[1], &o, sizeof o);
+    _exit(written == static_cast<ssize_t>(sizeof o) ? 0 : 1);
+  }
+  close(fd[1]);
+  Outcome o;
+  if (read(fd[0], &o, sizeof o) != static_cast<ssize_t>(sizeof o)) o.ok = false;
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return o;
+}
+
+void Row(const Case& c, const std::string& method, const Outcome& o) {
+  if (!o.ok) {
+    std::printf("| %s | %s | failed | | | | | | | | |\n", c.name.c_str(), method.c_str());
+    return;
+  }
+  const bench::Figures& f = o.figures;
+  std::string patches = o.patches ? std::to_string(o.patches) : "-";
+  if (o.certified >= 0) patches += o.certified ? ", certified convex" : ", not certified";
+  std::printf(
+      "| %s | %s | %.5f (%.2e) | %.5f (%.2e) | %.4f | %s (%ld) | %zu | %s | %.2f | %.2f | %.0f |\n",
+      c.name.c_str(), method.c_str(), f.chamfer, f.chamfer / c.size, f.hausdorff,
+      f.hausdorff / c.size, f.normal_consistency, f.bad_edges ? "no" : "yes", f.bad_edges,
+      f.triangles, patches.c_str(), f.seconds, o.cpu_seconds, o.peak_rss_mb);
+  std::fflush(stdout);
+}
+
+double BoxSize(const std::vector<Vec>& points) {
+  Vec lo = points[0], hi = points[0];
+  for (const Vec& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return (hi - lo).maxCoeff();
+}
+
+bool AddScan(const std::string& path, const std::string& name, bool convex,
+             std::vector<Case>* cases) {
+  if (!std::ifstream(path).good()) {
+    std::printf("(skipped %s: %s is absent)\n", name.c_str(), path.c_str());
+    return false;
+  }
+  const implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(path);
+  Case c;
+  c.name = name;
+  c.points = cloud.points;
+  c.normals = cloud.normals;
+  c.truth = bench::CloudTruth(c.points, c.normals);
+  c.size = BoxSize(c.points);
+  c.convex = convex;
+  cases->push_back(std::move(c));
+  return true;
+}
+
+void AddGenerated(const std::string& name, const implicitfit::Model& truth, bool convex, int points,
+                  unsigned seed, std::vector<Case>* cases) {
+  implicitfit::SampleOptions so;
+  so.count = points;
+  so.seed = seed;
+  const implicitfit::SampledCloud clean = implicitfit::SampleModel(truth, so);
+  const double size = (clean.box_max - clean.box_min).maxCoeff() / 1.1;
+  so.noise = 0.002 * size;
+  so.seed = seed + 1000;
+  const implicitfit::SampledCloud noisy = implicitfit::SampleModel(truth, so);
+  Case c;
+  c.name = name;
+  c.points = noisy.cloud.points;
+  c.normals = noisy.cloud.normals;
+  c.truth = bench::ModelTruth(truth, clean.cloud.points);
+  c.size = BoxSize(clean.cloud.points);
+  c.convex = convex;
+  cases->push_back(std::move(c));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int points = 20000, cells = 0, degree = 3;
+  std::string only;  // run only the clouds whose name contains this
+  unsigned seed = 1;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--points"))
+      points = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seed"))
+      seed = static_cast<unsigned>(std::atoi(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--cells"))
+      cells = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--degree"))
+      degree = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--only"))
+      only = argv[i + 1];
+  }
+  std::vector<Case> cases;
+  AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_kitten.xyz", "kitten (scan)", false,
+          &cases);
+  AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_oni.pwn", "oni (scan)", false, &cases);
+  AddScan(std::string(IMPLICITFIT_BUNDLED_DATA) + "/cgal_sphere_single.xyz", "sphere (scan)", true,
+          &cases);
+  {
+    implicitfit::Model m;
+    m.AddPrimitive(implicitfit::NodeType::kEllipsoid, {0, 0, 0, 1.0, 0.7, 0.5, 1, 0, 0, 0, 1, 0});
+    AddGenerated("ellipsoid", m, true, points, seed, &cases);
+  }
+  {
+    implicitfit::Model m;
+    m.AddPrimitive(implicitfit::NodeType::kTorus, {0, 0, 0, 0, 0, 1, 1.0, 0.35});
+    AddGenerated("torus", m, false, points, seed, &cases);
+  }
+  {
+    implicitfit::Model m;
+    const int a = m.AddPrimitive(implicitfit::NodeType::kSphere, {-0.4, 0, 0, 0.6});
+    const int b = m.AddPrimitive(implicitfit::NodeType::kSphere, {0.4, 0, 0, 0.6});
+    m.AddOperator(implicitfit::NodeType::kUnion, {a, b}, 0.1, 0.1, 3);
+    AddGenerated("union of two spheres", m, false, points, seed, &cases);
+  }
+  std::printf("parent resident memory before the methods: %.0f MB\n\n", PeakRssMb());
+  std::printf(
+      "| cloud | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight "
+      "(bad edges) | triangles | patches | wall s | CPU s | peak MB |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Case& c : cases) {
+    if (c.name.find(only) == std::string::npos) continue;
+    for (bool convex : {false, true}) {
+      if (convex && !c.convex) continue;
+      const Outcome o = RunIsolated(c, seed, [&](Outcome* out) {
+        implicitfit::MeshFitOptions fo;
+        fo.degree = degree;
+        fo.cells = cells;
+        fo.convex = convex;
+        const implicitfit::MeshFitResult r = implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
+        out->patches = r.tetrahedra;
+        out->fit_rms = r.rms;
+        out->initial_rms = r.initial_rms;
+        if (convex) out->certified = r.success && r.certified_convex;
+        if (!r.success) return TriangleMesh();
+        implicitfit::MeshOptions mo;
+        mo.has_box = true;
+        mo.box_min = r.grid.BoxMin();
+        mo.box_max = r.grid.BoxMax();
+        mo.cell = (mo.box_max - mo.box_min).maxCoeff() / 128;
+        mo.num_threads = 2;
+        return implicitfit::MeshModel(r.ToModel(), mo).mesh;
+      });
+      char method[160];
+      std::snprintf(method, sizeof method, "implicitfit patch-mesh%s (rms %.2e, start %.2e)",
+                    convex ? " --convex" : "", o.fit_rms, o.initial_rms);
+      Row(c, method, o);
+    }
+    for (int depth : {7, 8}) {
+      const Outcome o = RunIsolated(
+          c, seed, [&](Outcome*) { return bench::PoissonMesh(c.points, c.normals, depth); });
+      Row(c, "PCL Poisson depth " + std::to_string(depth), o);
+    }
+    const Outcome o =
+        RunIsolated(c, seed, [&](Outcome*) { return bench::HoppeMesh(c.points, c.normals, 100); });
+    Row(c, "PCL marching cubes (Hoppe) 100^3", o);
+  }
+  return 0;
+}
