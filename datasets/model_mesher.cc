@@ -123,7 +123,7 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
     if (points > static_cast<double>(options.max_grid_points))
       throw std::invalid_argument("mesh grid too fine: more than " +
                                   std::to_string(options.max_grid_points) +
-                                  " grid points (raise --cell)");
+                                  " grid points (use a larger cell)");
     grid.n[a] = static_cast<int>(cells) + 1;
   }
   result.box_min = lo;

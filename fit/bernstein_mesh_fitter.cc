@@ -528,13 +528,12 @@ bool MeshFitOptions::IsValid(std::string* error) const {
     if (error) *error = e;
     return false;
   };
-  if (degree < 2 || degree > 5) return fail("--degree must be 2..5 for a patch mesh");
-  if (continuity != 0 && continuity != 1) return fail("--continuity must be 0 or 1");
+  if (degree < 2 || degree > 5) return fail("degree must be 2..5 for a patch mesh");
+  if (continuity != 0 && continuity != 1) return fail("continuity must be 0 or 1");
   if (convex && continuity != 1)
-    return fail(
-        "--convex needs --continuity 1 (convex patches joined C0 can meet at a concave kink)");
-  if (cells < 0 || cells > 200) return fail("--cells must be in 1..200");
-  if (!(cell >= 0.0) || !std::isfinite(cell)) return fail("--cell must be a positive length");
+    return fail("convex needs continuity 1 (convex patches joined C0 can meet at a concave kink)");
+  if (cells < 0 || cells > 200) return fail("cells must be in 1..200");
+  if (!(cell >= 0.0) || !std::isfinite(cell)) return fail("cell must be a positive length");
   return true;
 }
 
