@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "apps/batch_job.h"
 #include "apps/fit_job.h"
 #include "datasets/atomic_file.h"
 #include "datasets/model_file.h"
@@ -20,10 +21,10 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string ModelPath(const BatchOptions& o, const BatchInput& in) {
-  return (fs::path(o.out_dir) / (in.name + ".model.json")).string();
+  return BatchOutputPath(o, in, ".model.json");
 }
 std::string ReportPath(const BatchOptions& o, const BatchInput& in) {
-  return (fs::path(o.out_dir) / (in.name + ".report.json")).string();
+  return BatchOutputPath(o, in, ".report.json");
 }
 
 // The figures of a complete earlier result, or false when it must be (re)fitted (also when it
@@ -83,37 +84,23 @@ bool ReadCompleteModelKindOutputs(const BatchInput& in, const BatchOptions& o, B
 }
 
 BatchOutcome ProcessModelKindInput(const BatchInput& in, const BatchOptions& o) {
-  BatchOutcome out;
-  out.input = in.path;
-  out.name = in.name;
-  if (o.resume && ReadCompleteModelKindOutputs(in, o, &out)) {
-    out.status = BatchStatus::kSkipped;
-    return out;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const std::string model_path = ModelPath(o, in), report_path = ReportPath(o, in);
-  std::error_code ignored;
-  try {
+  BatchJob job;
+  job.results = {ModelPath(o, in)};
+  job.read_complete = [&](BatchOutcome* out) { return ReadCompleteModelKindOutputs(in, o, out); };
+  job.run = [&](BatchOutcome* out) {
     const ModelKindFit fit = o.model_fit(in.path);
-    out.points = out.inliers = fit.points;
-    out.rms = fit.rms;
+    out->points = out->inliers = fit.points;
+    out->rms = fit.rms;
     if (fit.success) {
-      WriteModelFile(fit.model, model_path);
-      out.status = BatchStatus::kOk;
+      WriteModelFile(fit.model, ModelPath(o, in));
+      out->status = BatchStatus::kOk;
     } else {
-      fs::remove(model_path, ignored);
-      out.status = BatchStatus::kFailed;
-      out.error = "fit failed: " + fit.message;
+      out->status = BatchStatus::kFailed;
+      out->error = "fit failed: " + fit.message;
     }
-    WriteFileAtomically(report_path, fit.report.dump(2) + "\n");
-  } catch (const std::exception& e) {
-    fs::remove(model_path, ignored);
-    fs::remove(report_path, ignored);
-    out.status = BatchStatus::kError;
-    out.error = e.what();
-  }
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return out;
+    return fit.report;
+  };
+  return RunBatchJob(in, o, job);
 }
 
 }  // namespace
@@ -132,54 +119,72 @@ const char* BatchStatusName(BatchStatus status) {
   return "error";
 }
 
-BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
-  if (o.scene) return ProcessSceneInput(in, o);
-  if (o.solid) return ProcessSolidInput(in, o);
-  if (o.model_fit) return ProcessModelKindInput(in, o);
+std::string BatchOutputPath(const BatchOptions& o, const BatchInput& in, const char* suffix) {
+  return (fs::path(o.out_dir) / (in.name + suffix)).string();
+}
+
+BatchOutcome RunBatchJob(const BatchInput& in, const BatchOptions& o, const BatchJob& job) {
   BatchOutcome out;
   out.input = in.path;
   out.name = in.name;
-  PrimitiveFitOptions fit_options = o.fit;
-  std::string invalid;
-  if (!in.kind.empty() && !FittableKindFromName(in.kind, &fit_options.kind))
-    invalid = "unknown kind " + in.kind;
-  else if (!fit_options.IsValid(&invalid))
-    invalid =
-        std::string("options invalid for a ") + NodeTypeName(fit_options.kind) + " fit: " + invalid;
-  if (!invalid.empty()) {
-    out.error = invalid;  // e.g. a --fix field the manifest's kind does not have
+  if (!job.refusal.empty()) {
+    out.error = job.refusal;
     return out;
   }
-  if (o.resume && ReadCompleteOutputs(in, o, fit_options.kind, fit_options.estimator, &out)) {
+  if (o.resume && job.read_complete(&out)) {
     out.status = BatchStatus::kSkipped;
     return out;
   }
   const auto start = std::chrono::steady_clock::now();
-  const std::string model_path = ModelPath(o, in), report_path = ReportPath(o, in);
+  const std::string report_path = ReportPath(o, in);
   std::error_code ignored;
   try {
-    const CloudFit fit = FitCloudFile(in.path, fit_options);
-    out.points = fit.points;
-    out.rms = fit.result.rms;
-    out.inliers = fit.result.inliers.size();
-    if (fit.result.success) {
-      WriteModelFile(fit.result.ToModel(fit_options.kind), model_path);
-      out.status = BatchStatus::kOk;
-    } else {
-      fs::remove(model_path, ignored);
-      out.status = BatchStatus::kFailed;
-      out.error =
-          std::string(NodeTypeName(fit_options.kind)) + " fit failed: " + fit.result.message;
-    }
-    WriteFileAtomically(report_path, fit.report.dump(2) + "\n");
+    const nlohmann::json report = job.run(&out);
+    if (out.status != BatchStatus::kOk)
+      for (const std::string& path : job.results) fs::remove(path, ignored);
+    WriteFileAtomically(report_path, report.dump(2) + "\n");
   } catch (const std::exception& e) {
-    fs::remove(model_path, ignored);
+    for (const std::string& path : job.results) fs::remove(path, ignored);
     fs::remove(report_path, ignored);
     out.status = BatchStatus::kError;
     out.error = e.what();
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
+  if (o.scene) return ProcessSceneInput(in, o);
+  if (o.solid) return ProcessSolidInput(in, o);
+  if (o.model_fit) return ProcessModelKindInput(in, o);
+  PrimitiveFitOptions fit_options = o.fit;
+  BatchJob job;
+  std::string invalid;
+  if (!in.kind.empty() && !FittableKindFromName(in.kind, &fit_options.kind))
+    job.refusal = "unknown kind " + in.kind;
+  else if (!fit_options.IsValid(&invalid))  // e.g. a --fix field the manifest's kind lacks
+    job.refusal =
+        std::string("options invalid for a ") + NodeTypeName(fit_options.kind) + " fit: " + invalid;
+  job.results = {ModelPath(o, in)};
+  job.read_complete = [&](BatchOutcome* out) {
+    return ReadCompleteOutputs(in, o, fit_options.kind, fit_options.estimator, out);
+  };
+  job.run = [&](BatchOutcome* out) {
+    const CloudFit fit = FitCloudFile(in.path, fit_options);
+    out->points = fit.points;
+    out->rms = fit.result.rms;
+    out->inliers = fit.result.inliers.size();
+    if (fit.result.success) {
+      WriteModelFile(fit.result.ToModel(fit_options.kind), ModelPath(o, in));
+      out->status = BatchStatus::kOk;
+    } else {
+      out->status = BatchStatus::kFailed;
+      out->error =
+          std::string(NodeTypeName(fit_options.kind)) + " fit failed: " + fit.result.message;
+    }
+    return fit.report;
+  };
+  return RunBatchJob(in, o, job);
 }
 
 void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir) {
