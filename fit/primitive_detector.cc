@@ -15,6 +15,7 @@
 #include "fit/patch_hypotheses.h"
 #include "fit/primitive_fitter.h"
 #include "fit/primitive_function.h"
+#include "fit/surface_noise.h"
 #include "fit/thread_count.h"
 #include "model/median.h"
 
@@ -932,7 +933,10 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
     tangent.push_back(Median(d));
     angle.push_back(Median(a));
   }
-  result.noise = 1.4826 * Median(tangent);
+  // The tangent-plane figure (the surface's sagitta included) decides whether the cloud fills a
+  // volume; the bands use the curvature-free noise (mid-normal distances, fit/surface_noise.h).
+  const double tangent_noise = 1.4826 * Median(tangent);
+  result.noise = EstimateSurfaceNoise(x, normals, neighbours, stride);
   result.threshold =
       options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
   const double median_angle_deg = Median(angle) * 180.0 / M_PI;
@@ -946,7 +950,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   // benchmark clouds), and a dense scan noisier than its spacing still has coherent normals when
   // they come from the scanner or a larger scale. A cloud failing both has no surface at its
   // sampling scale; an explicit threshold overrides this.
-  if (options.threshold <= 0 && result.noise > kMaxNoiseToSpacing * spacing &&
+  if (options.threshold <= 0 && tangent_noise > kMaxNoiseToSpacing * spacing &&
       median_angle_deg > kIncoherentNormalDeg)
     return result;
   const Scales scales{result.threshold, std::cos(result.normal_angle_deg * M_PI / 180.0),

@@ -3,15 +3,17 @@
 //
 // Scales from the data (nothing absolute):
 //   s     the sampling spacing (median 6th-neighbour distance, given with the neighbourhoods);
-//   sigma the noise: 1.4826 x the median over points of the median |n_i . (p_j - p_i)| over
-//         their neighbours j (distance of the neighbours to the point's tangent plane);
+//   sigma the noise: 1.4826 x the median over points of the median |(n_i + n_j) / 2 . (p_j - p_i)|
+//         over their first 8 neighbours j: the distance of the neighbours to the point's tangent
+//         plane without the surface's sagitta (fit/surface_noise.h; the tangent-plane distance
+//         read 0.18 on a noise-free coarse CAD sample, so the bands were 3 times too wide);
 //   tau   the distance band: max(3 sigma, 0.1 s) unless options.threshold is given;
 //   theta the normal band: max(20 deg, 3 x the median angle between neighbouring normals),
 //         at most 45 deg.
-// A cloud whose sigma exceeds 0.4 s and whose neighbouring normals differ by more than 15 deg
-// (median) fills a volume (uniform random points: 0.58 s, > 15 deg) and gives no primitive
-// unless options.threshold is given.
-// A point supports a primitive when |f(x)| < tau and |cos(grad f, n)| >= cos(theta).
+// A cloud whose tangent-plane noise (1.4826 x median of the median |n_i . (p_j - p_i)|) exceeds 0.4
+// s and whose neighbouring normals differ by more than 15 deg (median) fills a volume (uniform
+// random points: 0.58 s, > 15 deg) and gives no primitive unless options.threshold is given. A
+// point supports a primitive when |f(x)| < tau and |cos(grad f, n)| >= cos(theta).
 //
 // Candidates (local sampling, so small primitives are found among large ones): a seed point is
 // drawn among the unassigned ones whose normal agrees with its neighbours' (not on a crease);

@@ -224,7 +224,9 @@ TEST(PrimitiveDetector, Fit4CadRecall) {
                 m.truth_counted, m.precise, m.detected_counted, m.mean_iou);
     truth += m.truth_counted, recovered += m.recovered;
   }
-  EXPECT_GE(static_cast<double>(recovered) / truth, 0.8);
+  // 2026-11-28: 48 of 54 (PC33 1 ring band, PC34 2 ring bands, PC21 2, PC155 1: see README).
+  EXPECT_EQ(truth, 54);
+  EXPECT_GE(recovered, 48);
 }
 
 TEST(PrimitiveDetector, CgalIcosahedronFaces) {
