@@ -723,6 +723,97 @@ class Detector {
     return changed;
   }
 
+  // Kind check against the neighbours (after merging): a curved primitive P may owe its kind to
+  // points of a neighbouring surface it crosses (a sphere over a short cylinder and its chamfer
+  // explains more points than the cylinder, so it wins the seed's comparison). On P's support S
+  // every other allowed kind Q is fitted (FitKindToSupport, then least squares on the points Q
+  // supports), and each model M in {P, Q...} is scored with every point's best explanation among
+  // M and the other primitives that support it (distance and normal bands):
+  //   C_M = sum_{i in S} min(r_iM^2 / s^2, min_{O != P supports i} r_iO^2 / s^2, tau^2 / s^2)
+  //         + p_M ln |S|;
+  // the cheapest replaces P. A point another primitive explains costs the same whatever M, so
+  // the comparison rests on the points only P can explain, with the BIC penalty against
+  // needless parameters. Returns the number of primitives whose kind changed.
+  int Rekind() {
+    const int K = static_cast<int>(primitives_.size());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
+    std::vector<PrimitiveFunction> fs;
+    for (const auto& p : primitives_) fs.emplace_back(p.kind, p.parameters);
+    std::vector<DetectedPrimitive> replaced(primitives_);
+    std::vector<char> flags(K, 0);
+    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
+    ParallelFor(K, threads, [&](int k, int) {
+      const DetectedPrimitive& p = primitives_[k];
+      if (p.kind == NodeType::kPlane) return;
+      const std::vector<int> s = Spread(p.points, kMaxRefitPoints);
+      std::vector<double> other(s.size(), cap);
+      int own = 0;  // points of s that no other primitive supports
+      for (size_t m = 0; m < s.size(); ++m) {
+        for (int o = 0; o < K; ++o) {
+          if (o == k || !Supports(fs[o], s[m])) continue;
+          const double r = fs[o](x_[s[m]]);
+          other[m] = std::min(other[m], r * r / (sigma_ * sigma_));
+        }
+        own += other[m] == cap;
+      }
+      if (own < std::max(min_points_, 8)) return;  // a duplicate: nothing to compare on
+      const double penalty = std::log(static_cast<double>(std::max<size_t>(2, p.points.size())));
+      auto cost = [&](NodeType kind, const std::vector<double>& q) {
+        const PrimitiveFunction f(kind, q);
+        double c = 0;
+        for (size_t m = 0; m < s.size(); ++m) {
+          const double r = f(x_[s[m]]);
+          c += std::min(other[m], r * r / (sigma_ * sigma_));
+        }
+        return c * p.points.size() / s.size() + DegreesOfFreedom(kind) * penalty;
+      };
+      // Every model (P's own included) least-squares fitted to the points of S it supports.
+      // Returns the number of points of S it supports (0: too few to fit).
+      auto refit_on_supported = [&](NodeType kind, std::vector<double>* q) {
+        const PrimitiveFunction f(kind, *q);
+        std::vector<int> supported;
+        for (int i : s)
+          if (Supports(f, i)) supported.push_back(i);
+        if (static_cast<int>(supported.size()) < std::max(min_points_, 8)) return 0;
+        std::vector<double> refit = *q;
+        if (RefitPrimitiveLocally(kind, x_, supported, &refit, 30) >= 0 && Finite(refit) &&
+            Reasonable(kind, refit) && cost(kind, refit) < cost(kind, *q))
+          *q = std::move(refit);
+        const PrimitiveFunction g(kind, *q);
+        int n = 0;
+        for (int i : s) n += Supports(g, i);
+        return n;
+      };
+      std::vector<double> own_params = p.parameters;
+      const int own_supported = refit_on_supported(p.kind, &own_params);
+      double best_cost = cost(p.kind, own_params);
+      if (own_params != p.parameters) replaced[k].parameters = own_params;
+      std::seed_seq seq{options_.seed, 0x4b1du, static_cast<unsigned>(k)};
+      std::mt19937 rng(seq);
+      for (NodeType kind : options_.kinds) {
+        if (kind == p.kind) continue;
+        std::vector<double> q;
+        // Q only trades coverage for accuracy (P over-reaches into a neighbour: Q supports fewer
+        // points of S); a Q that supports as many is a surface bent over the joint with P's
+        // neighbour (a torus over a cylinder and the start of its fillet).
+        if (FitKindToSupport(kind, s, rng, &q) < 0) continue;
+        const int supported = refit_on_supported(kind, &q);
+        if (supported == 0 || supported >= own_supported) continue;
+        const double c = cost(kind, q);
+        if (c < best_cost) {
+          best_cost = c;
+          replaced[k].kind = kind;
+          replaced[k].parameters = q;
+          flags[k] = 1;
+        }
+      }
+    });
+    primitives_ = std::move(replaced);
+    int changed = 0;
+    for (char f : flags) changed += f;
+    return changed;
+  }
+
   // Every point to the primitive explaining it best; supports cut to their largest component;
   // small primitives dropped; primitives ordered by size.
   void Reassign() {
@@ -966,6 +1057,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   detector.Run(&result);
   result.simplified = detector.Simplify();
   result.merges = detector.Merge();
+  result.simplified += detector.Rekind();
   detector.Reassign();
   detector.Refine();
 

@@ -54,7 +54,12 @@
 // Final stage: each primitive is replaced by the simplest kind that explains 97% as many of its
 // points (hypotheses from its whole support and minimal samples; curved kinds within 2 times the
 // cost); pieces of one surface are merged (same kind,
-// adjacent, each explaining >= 80% of the other's points); every point is re-assigned to the
+// adjacent, each explaining >= 80% of the other's points); each curved primitive's kind is
+// checked against its neighbours: every other kind Q is fitted to its support S (least squares on
+// the points Q supports) and each model M scored by C_M = sum_{i in S} min(r_iM^2, r_iO^2, tau^2)
+// / s^2 + p_M ln |S|, r_iO the residual of any other primitive O that supports i; a Q that
+// supports fewer points of S than the primitive (it over-reached into a neighbour: a sphere over a
+// short cylinder and its chamfer) replaces it when cheaper; every point is re-assigned to the
 // primitive explaining it best (|f| < tau; among those with agreeing normals the smallest |f|,
 // else, for points next to a primitive's support, the smallest |f| whatever the normal: creases
 // where estimated normals are smeared); each support is cut to its largest connected component;
