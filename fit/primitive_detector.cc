@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <numeric>
 #include <random>
@@ -15,6 +16,7 @@
 #include "fit/patch_hypotheses.h"
 #include "fit/primitive_fitter.h"
 #include "fit/primitive_function.h"
+#include "fit/surface_noise.h"
 #include "fit/thread_count.h"
 #include "model/median.h"
 
@@ -23,9 +25,15 @@ namespace {
 
 using Eigen::Vector3d;
 
-constexpr int kMaxRefitPoints = 2000;       // points of a growth refit (evenly spread subset)
-constexpr int kMaxCostPoints = 4000;        // points of the kind-selection cost
-constexpr int kGrowthRounds = 8;            // refit-and-regrow rounds of one candidate
+constexpr int kMaxRefitPoints = 2000;  // points of a growth refit (evenly spread subset)
+constexpr int kMaxCostPoints = 4000;   // points of the kind-selection cost
+constexpr int kGrowthRounds = 8;       // refit-and-regrow rounds of one candidate
+// Each kind's growth from a seed stops at this many points (breadth-first from the seed's patch:
+// a local region is enough for the refit, which uses kMaxRefitPoints of them, and for the kind
+// choice); the winning kind's support is then grown without limit once (Complete). Above every
+// benchmark cloud's size (31 374 points), so it only changes large clouds, where each kind's
+// every refit round regrew the whole support (10^6 points: growth took about 55% of the time).
+constexpr size_t kMaxGrowthPoints = 50000;
 constexpr double kKeepFraction = 0.8;       // a candidate is accepted if this much is still free
 constexpr double kSimplerFraction = 0.97;   // a simpler kind explaining this much wins
 constexpr double kMaxRmsSigmas = 2.0;       // a candidate's RMS must stay under this * sigma
@@ -164,8 +172,9 @@ class Detector {
   };
 
   // The free points connected to `sources` through points that support f.
+  // Breadth-first: with a `limit`, the first `limit` of them (the nearest along the graph).
   std::vector<int> Grow(const PrimitiveFunction& f, const std::vector<int>& sources, Workspace& w,
-                        double band) const {
+                        double band, size_t limit = SIZE_MAX) const {
     w.Next(x_.size());
     std::vector<int> out;
     for (int s : sources) {
@@ -173,7 +182,7 @@ class Detector {
       w.stamp[s] = w.current;
       if (Supports(f, s, band)) out.push_back(s);
     }
-    for (size_t h = 0; h < out.size(); ++h)
+    for (size_t h = 0; h < out.size() && out.size() < limit; ++h)
       for (int j : nb_[out[h]]) {
         if (labels_[j] >= 0 || w.Blocked(j) || w.stamp[j] == w.current) continue;
         w.stamp[j] = w.current;
@@ -248,7 +257,17 @@ class Detector {
   struct Grown {
     std::vector<double> params;
     std::vector<int> support;
+    bool capped = false;       // support stopped at kMaxGrowthPoints
+    std::vector<int> sources;  // then: where to grow it from again,
+    double band = 0.0;         // and in which band
   };
+
+  // The whole support of a capped growth (the kind's final parameters, no limit).
+  void Complete(NodeType kind, Grown* g, Workspace& w) const {
+    if (!g->capped) return;
+    g->support = Grow(PrimitiveFunction(kind, g->params), g->sources, w, g->band);
+    g->capped = false;
+  }
 
   // Best hypothesis of `kind` on the patch, refitted and grown.
   Grown GrowKind(NodeType kind, const std::vector<int>& patch, std::mt19937& rng,
@@ -311,7 +330,7 @@ class Detector {
       }
       std::vector<int> sources = patch_support(params);
       best.params = params;
-      best.support = Grow(PrimitiveFunction(kind, params), sources, w, band);
+      best.support = Grow(PrimitiveFunction(kind, params), sources, w, band, kMaxGrowthPoints);
       for (int round = 0; round < kGrowthRounds; ++round) {
         std::vector<double> refit = best.params;
         if (RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit) < 0 ||
@@ -319,7 +338,7 @@ class Detector {
           break;
         std::vector<int> s = patch_support(refit);
         if (s.empty()) break;
-        std::vector<int> grown = Grow(PrimitiveFunction(kind, refit), s, w, band);
+        std::vector<int> grown = Grow(PrimitiveFunction(kind, refit), s, w, band, kMaxGrowthPoints);
         if (grown.size() <= best.support.size()) break;
         const bool small_gain = grown.size() < 1.02 * best.support.size();
         best.params = std::move(refit);
@@ -331,6 +350,10 @@ class Detector {
       const double rms =
           RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
       if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
+      // A growth stopped at kMaxGrowthPoints is completed by Complete() if the kind wins.
+      best.band = band;
+      best.capped = best.support.size() >= kMaxGrowthPoints;
+      if (best.capped) best.sources = patch_support(best.params);
       // A right model leaves the noise (RMS ~ sigma); a wrong one that happens to cross the band
       // (a cone through the faces at a vertex) spreads its residuals over it (RMS ~ tau / sqrt 3).
       // Far-off (degenerate) shapes, e.g. a torus of radius 1e13 imitating a cone, are dropped.
@@ -496,6 +519,7 @@ class Detector {
       const int first = SplitTest(best, grown, kinds, all, u, scale, rng, w);
       if (first >= 0) best = first;
     }
+    Complete(kinds[best], &grown[best], w);
     c.kind = kinds[best];
     c.params = std::move(grown[best].params);
     c.support = std::move(grown[best].support);
@@ -722,6 +746,97 @@ class Detector {
     return changed;
   }
 
+  // Kind check against the neighbours (after merging): a curved primitive P may owe its kind to
+  // points of a neighbouring surface it crosses (a sphere over a short cylinder and its chamfer
+  // explains more points than the cylinder, so it wins the seed's comparison). On P's support S
+  // every other allowed kind Q is fitted (FitKindToSupport, then least squares on the points Q
+  // supports), and each model M in {P, Q...} is scored with every point's best explanation among
+  // M and the other primitives that support it (distance and normal bands):
+  //   C_M = sum_{i in S} min(r_iM^2 / s^2, min_{O != P supports i} r_iO^2 / s^2, tau^2 / s^2)
+  //         + p_M ln |S|;
+  // the cheapest replaces P. A point another primitive explains costs the same whatever M, so
+  // the comparison rests on the points only P can explain, with the BIC penalty against
+  // needless parameters. Returns the number of primitives whose kind changed.
+  int Rekind() {
+    const int K = static_cast<int>(primitives_.size());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
+    std::vector<PrimitiveFunction> fs;
+    for (const auto& p : primitives_) fs.emplace_back(p.kind, p.parameters);
+    std::vector<DetectedPrimitive> replaced(primitives_);
+    std::vector<char> flags(K, 0);
+    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
+    ParallelFor(K, threads, [&](int k, int) {
+      const DetectedPrimitive& p = primitives_[k];
+      if (p.kind == NodeType::kPlane) return;
+      const std::vector<int> s = Spread(p.points, kMaxRefitPoints);
+      std::vector<double> other(s.size(), cap);
+      int own = 0;  // points of s that no other primitive supports
+      for (size_t m = 0; m < s.size(); ++m) {
+        for (int o = 0; o < K; ++o) {
+          if (o == k || !Supports(fs[o], s[m])) continue;
+          const double r = fs[o](x_[s[m]]);
+          other[m] = std::min(other[m], r * r / (sigma_ * sigma_));
+        }
+        own += other[m] == cap;
+      }
+      if (own < std::max(min_points_, 8)) return;  // a duplicate: nothing to compare on
+      const double penalty = std::log(static_cast<double>(std::max<size_t>(2, p.points.size())));
+      auto cost = [&](NodeType kind, const std::vector<double>& q) {
+        const PrimitiveFunction f(kind, q);
+        double c = 0;
+        for (size_t m = 0; m < s.size(); ++m) {
+          const double r = f(x_[s[m]]);
+          c += std::min(other[m], r * r / (sigma_ * sigma_));
+        }
+        return c * p.points.size() / s.size() + DegreesOfFreedom(kind) * penalty;
+      };
+      // Every model (P's own included) least-squares fitted to the points of S it supports.
+      // Returns the number of points of S it supports (0: too few to fit).
+      auto refit_on_supported = [&](NodeType kind, std::vector<double>* q) {
+        const PrimitiveFunction f(kind, *q);
+        std::vector<int> supported;
+        for (int i : s)
+          if (Supports(f, i)) supported.push_back(i);
+        if (static_cast<int>(supported.size()) < std::max(min_points_, 8)) return 0;
+        std::vector<double> refit = *q;
+        if (RefitPrimitiveLocally(kind, x_, supported, &refit, 30) >= 0 && Finite(refit) &&
+            Reasonable(kind, refit) && cost(kind, refit) < cost(kind, *q))
+          *q = std::move(refit);
+        const PrimitiveFunction g(kind, *q);
+        int n = 0;
+        for (int i : s) n += Supports(g, i);
+        return n;
+      };
+      std::vector<double> own_params = p.parameters;
+      const int own_supported = refit_on_supported(p.kind, &own_params);
+      double best_cost = cost(p.kind, own_params);
+      if (own_params != p.parameters) replaced[k].parameters = own_params;
+      std::seed_seq seq{options_.seed, 0x4b1du, static_cast<unsigned>(k)};
+      std::mt19937 rng(seq);
+      for (NodeType kind : options_.kinds) {
+        if (kind == p.kind) continue;
+        std::vector<double> q;
+        // Q only trades coverage for accuracy (P over-reaches into a neighbour: Q supports fewer
+        // points of S); a Q that supports as many is a surface bent over the joint with P's
+        // neighbour (a torus over a cylinder and the start of its fillet).
+        if (FitKindToSupport(kind, s, rng, &q) < 0) continue;
+        const int supported = refit_on_supported(kind, &q);
+        if (supported == 0 || supported >= own_supported) continue;
+        const double c = cost(kind, q);
+        if (c < best_cost) {
+          best_cost = c;
+          replaced[k].kind = kind;
+          replaced[k].parameters = q;
+          flags[k] = 1;
+        }
+      }
+    });
+    primitives_ = std::move(replaced);
+    int changed = 0;
+    for (char f : flags) changed += f;
+    return changed;
+  }
+
   // Every point to the primitive explaining it best; supports cut to their largest component;
   // small primitives dropped; primitives ordered by size.
   void Reassign() {
@@ -932,7 +1047,10 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
     tangent.push_back(Median(d));
     angle.push_back(Median(a));
   }
-  result.noise = 1.4826 * Median(tangent);
+  // The tangent-plane figure (the surface's sagitta included) decides whether the cloud fills a
+  // volume; the bands use the curvature-free noise (mid-normal distances, fit/surface_noise.h).
+  const double tangent_noise = 1.4826 * Median(tangent);
+  result.noise = EstimateSurfaceNoise(x, normals, neighbours, stride);
   result.threshold =
       options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
   const double median_angle_deg = Median(angle) * 180.0 / M_PI;
@@ -946,7 +1064,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   // benchmark clouds), and a dense scan noisier than its spacing still has coherent normals when
   // they come from the scanner or a larger scale. A cloud failing both has no surface at its
   // sampling scale; an explicit threshold overrides this.
-  if (options.threshold <= 0 && result.noise > kMaxNoiseToSpacing * spacing &&
+  if (options.threshold <= 0 && tangent_noise > kMaxNoiseToSpacing * spacing &&
       median_angle_deg > kIncoherentNormalDeg)
     return result;
   const Scales scales{result.threshold, std::cos(result.normal_angle_deg * M_PI / 180.0),
@@ -962,6 +1080,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   detector.Run(&result);
   result.simplified = detector.Simplify();
   result.merges = detector.Merge();
+  result.simplified += detector.Rekind();
   detector.Reassign();
   detector.Refine();
 

@@ -3,15 +3,17 @@
 //
 // Scales from the data (nothing absolute):
 //   s     the sampling spacing (median 6th-neighbour distance, given with the neighbourhoods);
-//   sigma the noise: 1.4826 x the median over points of the median |n_i . (p_j - p_i)| over
-//         their neighbours j (distance of the neighbours to the point's tangent plane);
+//   sigma the noise: 1.4826 x the median over points of the median |(n_i + n_j) / 2 . (p_j - p_i)|
+//         over their first 8 neighbours j: the distance of the neighbours to the point's tangent
+//         plane without the surface's sagitta (fit/surface_noise.h; the tangent-plane distance
+//         read 0.18 on a noise-free coarse CAD sample, so the bands were 3 times too wide);
 //   tau   the distance band: max(3 sigma, 0.1 s) unless options.threshold is given;
 //   theta the normal band: max(20 deg, 3 x the median angle between neighbouring normals),
 //         at most 45 deg.
-// A cloud whose sigma exceeds 0.4 s and whose neighbouring normals differ by more than 15 deg
-// (median) fills a volume (uniform random points: 0.58 s, > 15 deg) and gives no primitive
-// unless options.threshold is given.
-// A point supports a primitive when |f(x)| < tau and |cos(grad f, n)| >= cos(theta).
+// A cloud whose tangent-plane noise (1.4826 x median of the median |n_i . (p_j - p_i)|) exceeds 0.4
+// s and whose neighbouring normals differ by more than 15 deg (median) fills a volume (uniform
+// random points: 0.58 s, > 15 deg) and gives no primitive unless options.threshold is given. A
+// point supports a primitive when |f(x)| < tau and |cos(grad f, n)| >= cos(theta).
 //
 // Candidates (local sampling, so small primitives are found among large ones): a seed point is
 // drawn among the unassigned ones whose normal agrees with its neighbours' (not on a crease);
@@ -52,7 +54,12 @@
 // Final stage: each primitive is replaced by the simplest kind that explains 97% as many of its
 // points (hypotheses from its whole support and minimal samples; curved kinds within 2 times the
 // cost); pieces of one surface are merged (same kind,
-// adjacent, each explaining >= 80% of the other's points); every point is re-assigned to the
+// adjacent, each explaining >= 80% of the other's points); each curved primitive's kind is
+// checked against its neighbours: every other kind Q is fitted to its support S (least squares on
+// the points Q supports) and each model M scored by C_M = sum_{i in S} min(r_iM^2, r_iO^2, tau^2)
+// / s^2 + p_M ln |S|, r_iO the residual of any other primitive O that supports i; a Q that
+// supports fewer points of S than the primitive (it over-reached into a neighbour: a sphere over a
+// short cylinder and its chamfer) replaces it when cheaper; every point is re-assigned to the
 // primitive explaining it best (|f| < tau; among those with agreeing normals the smallest |f|,
 // else, for points next to a primitive's support, the smallest |f| whatever the normal: creases
 // where estimated normals are smeared); each support is cut to its largest connected component;

@@ -224,7 +224,10 @@ TEST(PrimitiveDetector, Fit4CadRecall) {
                 m.truth_counted, m.precise, m.detected_counted, m.mean_iou);
     truth += m.truth_counted, recovered += m.recovered;
   }
-  EXPECT_GE(static_cast<double>(recovered) / truth, 0.8);
+  // 2026-11-28: 50 of 54 (missed: PC33's and PC34's one-row cylinder rings, PC21's chamfer
+  // ring, PC155's face coplanar with another: see README); was 47 with the tangent-plane noise.
+  EXPECT_EQ(truth, 54);
+  EXPECT_GE(recovered, 50);
 }
 
 TEST(PrimitiveDetector, CgalIcosahedronFaces) {
