@@ -54,6 +54,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
                                  {"min_eigenvalue", r.min_eigenvalue},
                                  {"iterations", r.iterations},
                                  {"kept_initialisation", r.kept_initialisation},
+                                 {"box_sign_errors", r.box_sign_errors},
                                  {"seconds", r.seconds},
                                  {"normals", normals}};
   return MakeModelKindFit(r, report, cloud.size());

@@ -1,15 +1,23 @@
 // Fitting a Bernstein mesh (model/bernstein_mesh.h) to an oriented cloud: the patch-mesh fit of
 // NOTES.md G-1 (fit --model patch-mesh).
 //
-// Grid. The cloud's bounding box grown by 5% of its extent on every side (at least 5% of the
-// longest extent on a flat axis); cube edge h = --cell, or (--cells n) the longest grown
-// extent / n; n_a = ceil(extent_a / h) cubes per axis, centred on the box.
+// Grid. The cloud's bounding box grown on every side by the larger of 5% of its extent and
+// box_margin (10%) of the longest extent (5% only with --convex; at least 5% of the longest
+// extent on a flat axis); cube edge h = --cell, or (--cells n) the longest grown extent / n;
+// n_a = ceil(extent_a / h) cubes per axis, centred on the box. The margin keeps the box faces
+// beyond the far-field band, so that the box-face rows below can close the zero set.
 // 1. Linear initialisation, one sparse least-squares problem: f(p_i) = 0 and
 //    f(p_i +- d n_i) = +-d (d = 1% of the box diagonal), linear in the control points, plus the
 //    far-field rows: at the points of a lattice of spacing h/2 farther than 2d from every input
 //    point, f(x) = (x - p) . n_p with p the nearest input point (Hoppe's signed tangent-plane
 //    distance, weight far_field_weight), so that f keeps the sign of the nearest data away from
-//    the surface and no spurious sheet crosses empty space or the box. It is solved on the
+//    the surface and no spurious sheet crosses empty space; on the box faces the target is
+//    +|x - p| (outside), so that f > 0 on the whole box boundary and the zero set is a closed
+//    surface inside the box: an open scan (oni's unscanned base) is capped smoothly instead of
+//    leaving the box, where a mesher would cut it open (box_sign_errors counts the box-face
+//    samples where f <= 0 after the fit; 0 on every benchmark cloud); so is it at lattice points
+//    beside the data (direction from p more than 60 degrees off n_p: beyond an open rim, where
+//    the tangent-plane sign means nothing), so that such a cap closes near the rim. Solved on the
 //    global domain points (b = P w: C0 exact, model/bernstein_mesh_continuity.h) with the C1
 //    rows as weighted equations (weight continuity_weight) and soft C2 rows (smoothing_weight)
 //    on the faces of tetrahedra that hold no point, so holes close smoothly, by sparse Cholesky
@@ -20,16 +28,17 @@
 //    current RMS), w_n (grad f(p_i)/g_i - n_i) with w_n = normal_weight x diagonal / 10, the
 //    offset rows of step 1 with weight 0.1 (they fix the scale of f, which r_i leaves free) and
 //    the far-field rows; until the RMS improves by less than 0.5% (at most max_iterations);
-//    the best iterate is kept, so the result is never worse than the start. When these steps make
-//    no progress (< 0.5%; on grids of at most 1 500 tetrahedra), the Ceres refinement of step 3
-//    without the guard runs from the result and is kept when better after the projection. Then the
-//    exact projection onto the continuity space (fit/continuity_projection.h). Why not Ceres here
-//    (as the first version did, one parameter block per tetrahedron): with the continuity rows as
-//    stiff penalties (weight 1e4) Levenberg-Marquardt did not converge in 100 iterations on kitten
-//    (216 patches: 30 s) and its iterate used the slack of the penalty (continuity defect 2.8e-5):
-//    RMS 0.0026 before the projection, 0.092 after it, so the start (0.0199) was kept. Each
-//    linearised step is solved exactly instead (defect ~1e-6, which the projection removes without
-//    changing the RMS): kitten 0.0199 -> 0.0094 in 4.5 s.
+//    the best iterate is kept, so the result is never worse than the start (and an iterate with
+//    more far-field sign errors than the start, a spurious sheet, is never kept). When these steps
+//    make no progress (< 0.5%; on grids of at most 1 500 tetrahedra), the Ceres refinement of step
+//    3 without the guard runs from the result and is kept when better after the projection. Then
+//    the exact projection onto the continuity space (fit/continuity_projection.h). Why not Ceres
+//    here (as the first version did, one parameter block per tetrahedron): with the continuity rows
+//    as stiff penalties (weight 1e4) Levenberg-Marquardt did not converge in 100 iterations on
+//    kitten (216 patches: 30 s) and its iterate used the slack of the penalty (continuity
+//    defect 2.8e-5): RMS 0.0026 before the projection, 0.092 after it, so the start (0.0199) was
+//    kept. Each linearised step is solved exactly instead (defect ~1e-6, which the projection
+//    removes without changing the RMS): kitten 0.0199 -> 0.0094 in 4.5 s.
 // 3. --convex (C1 only; Ceres, one parameter block per tetrahedron, Cauchy loss at 3x the
 //    step-1 RMS, the continuity rows as penalties (weight continuity_weight) and the offset rows
 //    with weight 0.1; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
@@ -58,13 +67,16 @@ struct MeshFitOptions {
   double cell = 0.0;      // cube edge h; 0: from cells (default 8 cubes, 4 with --convex)
   bool has_grid = false;  // use `grid` as given instead of the cloud's box
   BernsteinGrid grid;
-  int continuity = 1;              // 0 or 1
-  bool convex = false;             // enforce and certify convexity on the whole box (C1 only)
-  double normal_weight = 0.1;      // w of the normal residuals
-  int max_iterations = 100;        // Ceres iterations
-  double continuity_weight = 1e4;  // weight of the continuity rows before the projection
-  double smoothing_weight = 0.1;   // weight of the C2 rows on faces of empty tetrahedra
-  double far_field_weight = 1.0;   // weight of the far-field rows (header, step 1); 0: none
+  int continuity = 1;                 // 0 or 1
+  bool convex = false;                // enforce and certify convexity on the whole box (C1 only)
+  double normal_weight = 0.1;         // w of the normal residuals
+  int max_iterations = 100;           // Ceres iterations
+  double continuity_weight = 1e4;     // weight of the continuity rows before the projection
+  double smoothing_weight = 0.1;      // weight of the C2 rows on faces of empty tetrahedra
+  double far_field_weight = 1.0;      // weight of the far-field rows (header, step 1); 0: none
+  double far_field_beside_cos = 0.5;  // far-field points beside the data are outside (.cc)
+  double box_margin = 0.1;  // grid box: cloud box + max(5%, box_margin x longest) per side
+                            // (not with --convex, which keeps 5%)
   bool IsValid(std::string* error) const;
 };
 
@@ -80,7 +92,9 @@ struct MeshFitResult {
   double unconstrained_rms = -1;       // --convex: RMS of the unconstrained fit (step 2), else -1
   double mean_normal_angle_deg = -1;   // mean angle between grad f and the normals
   double continuity_defect = 0.0;      // max |C b| / max |b| after the projection
-  bool certified_convex = false;       // every tetrahedron certified (and, C1, defect tiny)
+  long long box_sign_errors = 0;  // far-field samples on the box faces with f <= 0 (0: the zero
+                                  // set closes inside the box; -1 when no far-field rows)
+  bool certified_convex = false;  // every tetrahedron certified (and, C1, defect tiny)
   int certified_tetrahedra = 0;
   double min_eigenvalue = 0.0;  // smallest A^mu eigenvalue over all tetrahedra
   long long tetrahedra = 0;
@@ -95,6 +109,7 @@ MeshFitResult FitBernsteinMesh(const std::vector<Eigen::Vector3d>& points,
                                const MeshFitOptions& options);
 
 // The grid the fitter uses for a cloud (see the header comment).
-BernsteinGrid MeshGridForCloud(const std::vector<Eigen::Vector3d>& points, int cells, double cell);
+BernsteinGrid MeshGridForCloud(const std::vector<Eigen::Vector3d>& points, int cells, double cell,
+                               double margin = 0.0);
 
 }  // namespace implicitfit
