@@ -76,9 +76,14 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
       }
       return;
     }
-    case NodeType::kSkeletonOffset: {  // the skeleton's extent +- 1.05 r
+    case NodeType::kSkeletonOffset: {  // the skeleton's extent +- 1.05 r (or the features' reach)
       const int m = node.count;
-      const double r = 1.05 * p[3 * m];
+      double reach = p[3 * m];
+      for (int q = 0; q < SkeletonFeatureCount(node); ++q) {  // R_C + D + W + R
+        const double* e = p + 3 * m + 1 + ColemanFeatures::kPerFeature * q;
+        reach = std::max(reach, p[3 * m] + e[4] + e[3] + e[5]);
+      }
+      const double r = 1.05 * reach;
       *lo = Vec(p[0], p[1], p[2]);
       *hi = *lo;
       for (int i = 1; i < m; ++i) {

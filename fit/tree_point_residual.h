@@ -13,6 +13,7 @@
 #include <cmath>
 #include <vector>
 
+#include "fit/pruned_tree_evaluation.h"
 #include "fit/tree_parameters.h"
 #include "model/model.h"
 
@@ -32,16 +33,25 @@ struct TreePointResidual {
     using std::sqrt;
     // Reused per thread (Ceres evaluates blocks concurrently): no allocation per point.
     thread_local std::vector<T> flat;
-    flat.resize(model->parameters().size());
+    thread_local std::vector<double> values;
+    const size_t size = model->parameters().size();
+    flat.resize(size);
+    values.resize(size);
     parameters->ToFlat(blocks, flat.data());
-    T xt[3] = {T(x[0]), T(x[1]), T(x[2])};
-    const T f = model->Evaluate(flat.data(), xt);
+    for (size_t i = 0; i < size; ++i) values[i] = ValueOf(flat[i]);
+    // Children a blend ignores at the point are evaluated in double only
+    // (fit/pruned_tree_evaluation.h): the same f and derivatives, to rounding.
+    auto evaluate = [&](const double* xd) {
+      const T xt[3] = {T(xd[0]), T(xd[1]), T(xd[2])};
+      return PrunedEvaluate(*model, flat.data(), values.data(), xt, xd);
+    };
+    const T f = evaluate(x);
     T g[3];
     for (int k = 0; k < 3; ++k) {
-      T xp[3] = {T(x[0]), T(x[1]), T(x[2])}, xm[3] = {T(x[0]), T(x[1]), T(x[2])};
+      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
       xp[k] += h;
       xm[k] -= h;
-      g[k] = (model->Evaluate(flat.data(), xp) - model->Evaluate(flat.data(), xm)) / (2.0 * h);
+      g[k] = (evaluate(xp) - evaluate(xm)) / (2.0 * h);
     }
     const T gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + 1e-12);
     residuals[0] = f / gn;

@@ -17,6 +17,11 @@
 // f is flat (zero gradient) inside the core's plateau and beyond the falloff: the fitter's
 // residual f / |grad f| is floored there (fit/tree_point_residual.h).
 // Parameters: [R_C, then per feature: f (3), W, D, R, phi] (1 + 7 m).
+// Two JSON forms: NOTES.md CO-2's, features on a skeleton_offset node in field mode (R_C = its
+// "radius", the core its skeleton, c(x) the exact nearest skeleton point: EvaluateOnCore), and
+// the project's coleman_features node over one child that is a signed distance to a solid core
+// (a half-space, a sphere, ...: Evaluate, c(x) by central differences of the child). On the same
+// core the two agree; the closed-form plateau holds for both.
 #pragma once
 
 #include <algorithm>
@@ -38,18 +43,31 @@ struct ColemanFeatures {
     return 1.0 - u * u * (3.0 - 2.0 * u);
   }
 
-  // core(y): the child's signed distance at y (T[3]).
+  // core(y): the child's signed distance at y (T[3]); d = max(core, 0), the closest core point
+  // by central differences of the core (see above).
   template <typename T, typename Core>
   static T Evaluate(int count, const T* p, const T* x, const Core& core) {
+    return EvaluateOnCore(
+        count, p, x, [&](const T* y) { return Clamped(core(y)); },
+        [&](const T* y, T* c, T* n) { ClosestCorePoint(y, core, c, n); });
+  }
+
+  // The same field over a core given by distance(y) = d(y) >= 0 and closest(y, c, n), which
+  // sets c = c(y) and n = the unit direction from c(y) to y. A skeleton_offset node with
+  // "features" (NOTES.md CO-2's JSON form) passes its skeleton's exact nearest point
+  // (model/skeleton_offset.h), so no numerical differentiation is involved there.
+  template <typename T, typename Distance, typename ClosestPoint>
+  static T EvaluateOnCore(int count, const T* p, const T* x, const Distance& distance,
+                          const ClosestPoint& closest) {
     const T rc = p[0];
-    const T d = Clamped(core(x));
+    const T d = distance(x);
     const T i = Falloff(d, T(0.0), rc);
     T field = i;
     for (int q = 0; q < count; ++q) {
       const T* e = p + 1 + kPerFeature * q;
       const T &w = e[3], &depth = e[4], &r = e[5], &flare = e[6];
       T cf[3], u[3];
-      ClosestCorePoint(e, core, cf, u);
+      closest(e, cf, u);
       T along = T(0.0);
       for (int k = 0; k < 3; ++k) along += (x[k] - cf[k]) * u[k];
       T d1[3];
@@ -57,7 +75,7 @@ struct ColemanFeatures {
       T mixed = Length(d1);
       if (ValueOf(flare) != 0.0) {
         T cx[3], unused[3], d2[3];
-        ClosestCorePoint(x, core, cx, unused);
+        closest(x, cx, unused);
         for (int k = 0; k < 3; ++k) d2[k] = cx[k] - cf[k];
         mixed = flare * Length(d2) + (1.0 - flare) * mixed;
       }
@@ -68,6 +86,15 @@ struct ColemanFeatures {
       if (ValueOf(g) > ValueOf(field)) field = g;
     }
     return 0.5 - field;
+  }
+
+  // Unit direction from c to y, or +z when y == c (a feature point on the core itself: its
+  // direction is undefined; NOTES.md CO-2 puts feature points on the isosurface, d > 0).
+  template <typename T>
+  static void DirectionFrom(const T* c, const T* y, T* n) {
+    T v[3] = {y[0] - c[0], y[1] - c[1], y[2] - c[2]};
+    const T len = Length(v);
+    for (int k = 0; k < 3; ++k) n[k] = ValueOf(len) > 0.0 ? v[k] / len : T(k == 2 ? 1.0 : 0.0);
   }
 
  private:

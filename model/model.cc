@@ -70,6 +70,8 @@ std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
       field.size = node.num_parameters;  // the one per-node field
     else if (field.size < 0)
       field.size *= -node.count;  // per element
+  if (const int features = SkeletonFeatureCount(node))
+    fields.push_back({"features", ColemanFeatures::kPerFeature * features});
   return fields;
 }
 
@@ -273,10 +275,11 @@ int Model::AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& point
                              std::string name) {
   const size_t m = points.size() / 3;
   if (m == 0 || points.size() != 3 * m || (kind == SkeletonKind::kSegments && m % 2 != 0) ||
-      (kind == SkeletonKind::kPolyline && m < 2))
+      (kind == SkeletonKind::kPolyline && m < 2) ||
+      (kind == SkeletonKind::kTriangles && m % 3 != 0))
     throw std::invalid_argument(
         "AddSkeletonOffset: points (3 numbers each), two per segment, "
-        ">= 2 for a polyline");
+        ">= 2 for a polyline, three per triangle");
   ModelNode node;
   node.type = NodeType::kSkeletonOffset;
   node.name = std::move(name);
@@ -285,6 +288,20 @@ int Model::AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& point
   std::vector<double> p = points;
   p.push_back(radius);
   return AddNode(std::move(node), p);
+}
+
+int Model::AddSkeletonOffsetWithFeatures(SkeletonKind kind, const std::vector<double>& points,
+                                         double radius, const std::vector<double>& features,
+                                         std::string name) {
+  const size_t m = features.size() / ColemanFeatures::kPerFeature;
+  if (m == 0 || features.size() != m * ColemanFeatures::kPerFeature)
+    throw std::invalid_argument("AddSkeletonOffsetWithFeatures: 7 numbers per feature, >= 1");
+  if (!(radius > 0.0))
+    throw std::invalid_argument("AddSkeletonOffsetWithFeatures: core radius must be > 0");
+  const int index = AddSkeletonOffset(kind, points, radius, std::move(name));
+  parameters_.insert(parameters_.end(), features.begin(), features.end());
+  nodes_[index].num_parameters += static_cast<int>(features.size());
+  return index;
 }
 
 int Model::AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,

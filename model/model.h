@@ -121,8 +121,29 @@ struct ModelNode {
   int continuity = 0;                     // bernstein_mesh: declared continuity, 0 or 1
 };
 
-// The parameter fields of one node, with the sizes of per-node fields filled in.
+// One fold step of a union / intersection / difference node: op(a, b) with the node's
+// smoothing, order and parameters p (its own: [delta, epsilon]).
+template <typename T>
+T BlendPair(const ModelNode& node, const T& a, const T& b, const T* p) {
+  if (node.smoothing == BlendSmoothing::kConvex) {
+    if (node.type == NodeType::kUnion) return ConvexSmoothUnion(a, b, p[0], node.order);
+    if (node.type == NodeType::kIntersection)
+      return ConvexSmoothIntersection(a, b, p[0], node.order);
+    return ConvexSmoothDifference(a, b, p[0], node.order);
+  }
+  if (node.type == NodeType::kUnion) return SmoothUnion(a, b, p[0], p[1], node.order);
+  if (node.type == NodeType::kIntersection) return SmoothIntersection(a, b, p[0], p[1], node.order);
+  return SmoothDifference(a, b, p[0], p[1], node.order);
+}
+
+// The parameter fields of one node, with the sizes of per-node fields filled in (a
+// skeleton_offset with Coleman features gets a third field, "features", 7 per feature).
 std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node);
+// The number of Coleman features on a skeleton_offset node (0: the plain distance form).
+inline int SkeletonFeatureCount(const ModelNode& node) {
+  if (node.type != NodeType::kSkeletonOffset) return 0;
+  return (node.num_parameters - 3 * node.count - 1) / ColemanFeatures::kPerFeature;
+}
 
 class Model {
  public:
@@ -148,6 +169,13 @@ class Model {
   // points each; polyline: >= 2 vertices), radius.
   int AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
                         std::string name = "");
+  // NOTES.md CO-2's form: a skeleton_offset in field mode with Coleman's features (7 numbers
+  // each: point 3, width, depth, radius, flare; m >= 1), core radius R_C = `radius` > 0:
+  // f = 1/2 - max(i, max_f g_f) of model/coleman_features.h over the skeleton's distance.
+  // Parameters [skeleton points, radius, features]. Throws std::invalid_argument otherwise.
+  int AddSkeletonOffsetWithFeatures(SkeletonKind kind, const std::vector<double>& points,
+                                    double radius, const std::vector<double>& features,
+                                    std::string name = "");
   // Grid partition (model/partition.h): 3 strictly increasing cut lists, every finite cell
   // >= 2 epsilon wide, (a+1)(b+1)(c+1) children (x fastest), 0 <= order <= 14; throws
   // std::invalid_argument otherwise.
@@ -231,24 +259,8 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kIntersection:
     case NodeType::kDifference: {
       T acc = EvaluateNode(node.children[0], params, x);
-      for (size_t c = 1; c < node.children.size(); ++c) {
-        const T b = EvaluateNode(node.children[c], params, x);
-        if (node.smoothing == BlendSmoothing::kConvex) {
-          if (node.type == NodeType::kUnion)
-            acc = ConvexSmoothUnion(acc, b, p[0], node.order);
-          else if (node.type == NodeType::kIntersection)
-            acc = ConvexSmoothIntersection(acc, b, p[0], node.order);
-          else
-            acc = ConvexSmoothDifference(acc, b, p[0], node.order);
-          continue;
-        }
-        if (node.type == NodeType::kUnion)
-          acc = SmoothUnion(acc, b, p[0], p[1], node.order);
-        else if (node.type == NodeType::kIntersection)
-          acc = SmoothIntersection(acc, b, p[0], p[1], node.order);
-        else
-          acc = SmoothDifference(acc, b, p[0], p[1], node.order);
-      }
+      for (size_t c = 1; c < node.children.size(); ++c)
+        acc = BlendPair(node, acc, EvaluateNode(node.children[c], params, x), p);
       return acc;
     }
     case NodeType::kBox:
@@ -289,9 +301,21 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
     case NodeType::kBlobs:
       return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order, node.count,
                                       p, x);
-    case NodeType::kSkeletonOffset:
-      return SkeletonOffsetEvaluator::Evaluate(static_cast<SkeletonKind>(node.variant), node.count,
-                                               p, x);
+    case NodeType::kSkeletonOffset: {
+      const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
+      const int features = SkeletonFeatureCount(node);
+      if (features == 0) return SkeletonOffsetEvaluator::Evaluate(kind, node.count, p, x);
+      // NOTES.md CO-2: Coleman's features in field mode, R_C = radius (model/coleman_features.h)
+      auto closest = [&](const T* y, T* c, T* n) {
+        SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
+        ColemanFeatures::DirectionFrom(c, y, n);
+      };
+      auto distance = [&](const T* y) {
+        T c[3];
+        return SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
+      };
+      return ColemanFeatures::EvaluateOnCore(features, p + 3 * node.count, x, distance, closest);
+    }
     case NodeType::kMorph:
       return Morph(p[0], EvaluateNode(node.children[0], params, x),
                    EvaluateNode(node.children[1], params, x));

@@ -298,14 +298,17 @@ int ReadBlobs(const json& node, const std::string& path, const std::string& name
                          name);
 }
 
+std::vector<double> ReadFeatureList(const json& node, const std::string& path);
+
 // skeleton_offset {"skeleton": {"points": [[3],...]} | {"segments": [[[3],[3]],...]} |
-//                  {"polyline": [[3],...]}, "radius": r}.
+//                  {"polyline": [[3],...]} | {"triangles": [[[3],[3],[3]],...]}, "radius": r,
+//                  "features": [...] (optional: NOTES.md CO-2's field mode, R_C = r)}.
 int ReadSkeletonOffset(const json& node, const std::string& path, const std::string& name,
                        Model* model) {
   const std::string where = path + ".skeleton";
   if (!node.contains("skeleton") || !node.at("skeleton").is_object() ||
       node.at("skeleton").size() != 1)
-    Fail(where, "must be an object with exactly one of points, segments, polyline");
+    Fail(where, "must be an object with exactly one of points, segments, polyline, triangles");
   const json& s = node.at("skeleton");
   const std::string key = s.begin().key();
   const json& list = s.begin().value();
@@ -316,19 +319,24 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
     kind = SkeletonKind::kSegments;
   else if (key == "polyline")
     kind = SkeletonKind::kPolyline;
+  else if (key == "triangles")
+    kind = SkeletonKind::kTriangles;
   else
-    Fail(where + "." + key, "unknown skeleton (points, segments or polyline)");
+    Fail(where + "." + key, "unknown skeleton (points, segments, polyline or triangles)");
   const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
   if (!list.is_array() || list.size() < least)
-    Fail(where + "." + key,
-         "must be an array of at least " + std::to_string(least) +
-             (kind == SkeletonKind::kSegments ? " segment [[3], [3]]" : " points [x, y, z]"));
+    Fail(where + "." + key, "must be an array of at least " + std::to_string(least) +
+                                (kind == SkeletonKind::kSegments    ? " segment [[3], [3]]"
+                                 : kind == SkeletonKind::kTriangles ? " triangle [[3], [3], [3]]"
+                                                                    : " points [x, y, z]"));
   std::vector<double> points;
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string at = where + "." + key + "[" + std::to_string(i) + "]";
-    if (kind == SkeletonKind::kSegments) {
-      if (!list[i].is_array() || list[i].size() != 2) Fail(at, "must hold 2 points [x, y, z]");
-      for (size_t e = 0; e < 2; ++e) {
+    if (kind == SkeletonKind::kSegments || kind == SkeletonKind::kTriangles) {
+      const size_t corners = kind == SkeletonKind::kSegments ? 2 : 3;
+      if (!list[i].is_array() || list[i].size() != corners)
+        Fail(at, "must hold " + std::to_string(corners) + " points [x, y, z]");
+      for (size_t e = 0; e < corners; ++e) {
         const std::vector<double> x = Vector(list[i][e], 3, at + "[" + std::to_string(e) + "]");
         points.insert(points.end(), x.begin(), x.end());
       }
@@ -339,6 +347,9 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   }
   const double radius = Number(node, "radius", path);
   RequirePositive(radius, path + ".radius");
+  if (node.contains("features"))
+    return model->AddSkeletonOffsetWithFeatures(kind, points, radius, ReadFeatureList(node, path),
+                                                name);
   return model->AddSkeletonOffset(kind, points, radius, name);
 }
 
@@ -435,12 +446,9 @@ int ReadPartitionSequence(const json& node, const std::string& path, int depth,
   return model->AddPartitionSequence(separators, epsilon, static_cast<int>(order), children, name);
 }
 
-// coleman_features {"core_radius": R_C, "features": [{"point": [3], "width": W, "depth": D,
-// "radius": R, "flare": phi}, ...], "children": [CORE]}: R_C, W, R > 0, D >= 0, 0 <= phi <= 1.
-int ReadColemanFeatures(const json& node, const std::string& path, int depth,
-                        const std::string& name, Model* model) {
-  const double core_radius = Number(node, "core_radius", path);
-  RequirePositive(core_radius, path + ".core_radius");
+// Coleman features [{"point": [3], "width": W, "depth": D, "radius": R, "flare": phi}, ...]
+// (NOTES.md CO-2): W, R > 0, D >= 0, 0 <= phi <= 1; 7 numbers each in parameter order.
+std::vector<double> ReadFeatureList(const json& node, const std::string& path) {
   if (!node.contains("features") || !node.at("features").is_array() || node.at("features").empty())
     Fail(path + ".features", "must be an array of at least 1 feature object");
   std::vector<double> features;
@@ -459,6 +467,28 @@ int ReadColemanFeatures(const json& node, const std::string& path, int depth,
     if (flare < 0 || flare > 1) Fail(at + ".flare", "must be in [0, 1]");
     features.insert(features.end(), {w, d, r, flare});
   }
+  return features;
+}
+
+json WriteFeatureList(const std::vector<double>& p, int first, int count) {
+  json features = json::array();
+  for (int q = 0; q < count; ++q) {
+    const int e = first + ColemanFeatures::kPerFeature * q;
+    features.push_back({{"point", json(std::vector<double>(p.begin() + e, p.begin() + e + 3))},
+                        {"width", p[e + 3]},
+                        {"depth", p[e + 4]},
+                        {"radius", p[e + 5]},
+                        {"flare", p[e + 6]}});
+  }
+  return features;
+}
+
+// coleman_features {"core_radius": R_C, "features": [...], "children": [CORE]}: R_C > 0.
+int ReadColemanFeatures(const json& node, const std::string& path, int depth,
+                        const std::string& name, Model* model) {
+  const double core_radius = Number(node, "core_radius", path);
+  RequirePositive(core_radius, path + ".core_radius");
+  const std::vector<double> features = ReadFeatureList(node, path);
   if (!node.contains("children") || !node.at("children").is_array() ||
       node.at("children").size() != 1)
     Fail(path + ".children", "must hold exactly 1 node: the core (a signed distance)");
@@ -480,6 +510,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
   if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
   if (type == NodeType::kColemanFeatures) keys.insert("children");
+  if (type == NodeType::kSkeletonOffset) keys.insert("features");  // NOTES.md CO-2
   if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
   return keys;
 }
@@ -518,6 +549,7 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
       const std::string field = f[i].get<std::string>();
       bool known = false;
       for (const ParameterField& pf : ParameterFieldsOf(type)) known |= field == pf.name;
+      known |= type == NodeType::kSkeletonOffset && field == "features" && node.contains(field);
       if (!known) Fail(where, "'" + field + "' is not a parameter of a " + type_name);
       fixed.push_back(field);
     }
@@ -618,16 +650,7 @@ json WriteNode(const Model& model, int index) {
   } else if (node.type == NodeType::kColemanFeatures) {
     const int b = node.first_parameter;
     out["core_radius"] = p[b];
-    json features = json::array();
-    for (int q = 0; q < node.count; ++q) {
-      const int e = b + 1 + ColemanFeatures::kPerFeature * q;
-      features.push_back({{"point", Slice(p, e, 3)},
-                          {"width", p[e + 3]},
-                          {"depth", p[e + 4]},
-                          {"radius", p[e + 5]},
-                          {"flare", p[e + 6]}});
-    }
-    out["features"] = features;
+    out["features"] = WriteFeatureList(p, b + 1, node.count);
     out["children"] = json::array({WriteNode(model, node.children[0])});
   } else if (node.type == NodeType::kPartitionSequence) {
     json separators = json::array(), children = json::array();
@@ -658,14 +681,21 @@ json WriteNode(const Model& model, int index) {
     if (kind == SkeletonKind::kSegments) {
       for (int i = 0; i < m; i += 2)
         list.push_back(json::array({Slice(p, b + 3 * i, 3), Slice(p, b + 3 * i + 3, 3)}));
+    } else if (kind == SkeletonKind::kTriangles) {
+      for (int i = 0; i < m; i += 3)
+        list.push_back(json::array(
+            {Slice(p, b + 3 * i, 3), Slice(p, b + 3 * i + 3, 3), Slice(p, b + 3 * i + 6, 3)}));
     } else {
       for (int i = 0; i < m; ++i) list.push_back(Slice(p, b + 3 * i, 3));
     }
-    const char* key = kind == SkeletonKind::kPoints     ? "points"
-                      : kind == SkeletonKind::kSegments ? "segments"
-                                                        : "polyline";
+    const char* key = kind == SkeletonKind::kPoints      ? "points"
+                      : kind == SkeletonKind::kSegments  ? "segments"
+                      : kind == SkeletonKind::kTriangles ? "triangles"
+                                                         : "polyline";
     out["skeleton"] = json{{key, list}};
     out["radius"] = p[b + 3 * m];
+    if (const int features = SkeletonFeatureCount(node))
+      out["features"] = WriteFeatureList(p, b + 3 * m + 1, features);
   } else if (node.type == NodeType::kBox) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);

@@ -63,11 +63,20 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
                     "paraboloid with curvature >= 0: h + (k/2)|w|^2 is convex");
       return Leaf(TreeConvexity::kNotCertified, "paraboloid with curvature < 0: concave");
     case NodeType::kSkeletonOffset: {
-      // One point, one segment (or a two-vertex polyline): distance to a convex set minus r.
-      const bool one_element = node.count == 1 || (node.count == 2 && node.variant != 0);
+      if (SkeletonFeatureCount(node) > 0)
+        return Leaf(TreeConvexity::kNotCertified,
+                    "skeleton_offset with Coleman features: not certified");
+      // One point, one segment (or a two-vertex polyline), one triangle: distance to a convex
+      // set minus r.
+      const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
+      const bool one_element =
+          node.count == 1 ||
+          (node.count == 2 && kind != SkeletonKind::kPoints && kind != SkeletonKind::kTriangles) ||
+          (node.count == 3 && kind == SkeletonKind::kTriangles);
       if (one_element)
-        return Leaf(TreeConvexity::kConvexFunction,
-                    "skeleton_offset of one point or segment: distance to a convex set minus r");
+        return Leaf(
+            TreeConvexity::kConvexFunction,
+            "skeleton_offset of one point, segment or triangle: distance to a convex set minus r");
       return Leaf(TreeConvexity::kNotCertified,
                   "skeleton_offset of several elements: a union of offsets, not certified");
     }

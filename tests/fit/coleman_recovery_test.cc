@@ -47,5 +47,39 @@ TEST(ColemanFeaturesRecovery, PlateauWidthDepthRadiusAndCoreRadiusWithinOnePerce
   EXPECT_NEAR(rr, 0.2, 0.002);
 }
 
+// The same plateau in NOTES.md CO-2's own form (features on a skeleton_offset in field mode;
+// the core a large triangle in z = 0, its corners fixed): R_C (the node's radius), W, D and R
+// recovered within 1% from a start 10% off.
+TEST(ColemanFeaturesRecovery, NotesFormOnATriangleSkeletonWithinOnePercent) {
+  auto plateau = [](double rc, double w, double d, double r) {
+    Model m;
+    m.AddSkeletonOffsetWithFeatures(SkeletonKind::kTriangles, {-20, -20, 0, 20, -20, 0, 0, 20, 0},
+                                    rc, {0, 0, 0.2, w, d, r, 0.0});
+    m.mutable_nodes()[m.root()].fixed = {"skeleton"};
+    return m;
+  };
+  SampleOptions so;
+  so.count = 4000;
+  so.noise = 0.0005;
+  so.seed = 9;
+  so.has_box = true;
+  so.box_min = Vec(-1.2, -1.2, 0.01);  // the upper sheet (the triangle's offset is two-sided)
+  so.box_max = Vec(1.2, 1.2, 1.6);
+  const SampledCloud s = SampleModel(plateau(0.4, 0.3, 0.25, 0.2), so);
+  const TreeFitResult r = FitModelTree(plateau(0.44, 0.33, 0.22, 0.22), s.cloud.points,
+                                       s.cloud.normals, TreeFitOptions{});
+  ASSERT_TRUE(r.success) << r.message;
+  const std::vector<double>& p = r.model.parameters();  // triangle 9, R_C, f 3, W, D, R, flare
+  const double rc = p[9], w = p[13], d = p[14], rr = p[15];
+  std::printf(
+      "  coleman NOTES form: R_C %.5f (0.4), W %.5f (0.3), D %.5f (0.25), R %.5f (0.2), rms "
+      "%.3g\n",
+      rc, w, d, rr, r.rms);
+  EXPECT_NEAR(rc, 0.4, 0.004);
+  EXPECT_NEAR(w, 0.3, 0.003);
+  EXPECT_NEAR(d, 0.25, 0.0025);
+  EXPECT_NEAR(rr, 0.2, 0.002);
+}
+
 }  // namespace
 }  // namespace implicitfit

@@ -78,9 +78,16 @@ TEST(SkeletonOffset, RefusesEmptyOrAmbiguousSkeletons) {
   EXPECT_THROW(
       Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]]}, "radius": -1})"),
       ModelFormatError);
+  // Triangles (NOTES.md CO-1's surface skeleton) load; a triangle needs three corners, and an
+  // unknown skeleton kind is refused.
+  EXPECT_NO_THROW(Load(
+      R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}, "radius": 1})"));
   EXPECT_THROW(
       Load(
-          R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}, "radius": 1})"),
+          R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0]]]}, "radius": 1})"),
+      ModelFormatError);
+  EXPECT_THROW(
+      Load(R"({"type": "skeleton_offset", "skeleton": {"surfaces": [[0, 0, 0]]}, "radius": 1})"),
       ModelFormatError);
 }
 
