@@ -1,5 +1,6 @@
 #include "fit/primitive_detector.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -16,6 +17,7 @@
 #include "fit/patch_hypotheses.h"
 #include "fit/primitive_fitter.h"
 #include "fit/primitive_function.h"
+#include "fit/restricted_normals.h"
 #include "fit/surface_noise.h"
 #include "fit/thread_count.h"
 #include "model/median.h"
@@ -47,7 +49,8 @@ constexpr int kMaxSplitPieces = 3;      // primitives of the split test's altern
 // the winner's (a sphere through a short cylindrical band explains its points within the band but
 // leaves the band's sagitta in its residuals: 26 times the cylinder's cost on Fit4CAD PC155).
 constexpr double kSimplerCostRatio = 2.0;
-constexpr double kRetryBand = 0.5;  // band (x tau) of the retried growth of a candidate
+constexpr double kRetryBand = 0.5;         // band (x tau) of the retried growth of a candidate
+constexpr int kMinFreeSeedNeighbours = 3;  // leftover pass: free neighbours a seed is checked on
 
 // Degrees of freedom of a kind (the BIC penalty).
 int DegreesOfFreedom(NodeType kind) {
@@ -254,6 +257,57 @@ class Detector {
     return true;
   }
 
+  // A sphere and a cylinder that coincide along a great circle (the sphere's centre on the axis
+  // and the radii equal, within tau): on a narrow band around that circle (its height 2h with
+  // sagitta h^2 / 2R below tau) they are the same surface within the band, and only the BIC
+  // penalty (sphere 4, cylinder 5 degrees of freedom) separates them.
+  bool SphereZoneOfCylinder(const std::vector<double>& sphere,
+                            const std::vector<double>& cylinder) const {
+    const Vector3d a = Vector3d(cylinder[3], cylinder[4], cylinder[5]).normalized();
+    const Vector3d d =
+        Vector3d(sphere[0] - cylinder[0], sphere[1] - cylinder[1], sphere[2] - cylinder[2]);
+    return (d - d.dot(a) * a).norm() < tau_ && std::abs(sphere[3] - cylinder[6]) < tau_;
+  }
+
+  bool CylinderKindAllowed() const {
+    return std::find(options_.kinds.begin(), options_.kinds.end(), NodeType::kCylinder) !=
+           options_.kinds.end();
+  }
+
+  // A sphere's support that is only a narrow band around a circle (a cylinder ring one or two
+  // rows high) does not tell a sphere from a cylinder: the sphere's curvature across the band is
+  // below the distance band, and only the BIC penalty (sphere 4, cylinder 5 degrees of freedom)
+  // picked the sphere. Parts have such cylindrical bands between two faces; a sphere is
+  // identified by a support curved in every direction. The band's cylinder: axis along the
+  // support's direction of least spread (the normal of the circle's plane) through the sphere's
+  // centre, radius the mean distance to it, least-squares refitted; the support is a band when
+  // that cylinder's RMS stays within kMaxRmsSigmas sigma (a candidate's own acceptance rule).
+  // A spherical cap or zone of measurable curvature across leaves an RMS of its sagitta.
+  bool BandCylinder(const std::vector<int>& support, std::vector<double>* cylinder) const {
+    if (support.size() < 8) return false;
+    const std::vector<int> s = Spread(support, kMaxRefitPoints);
+    Vector3d mean = Vector3d::Zero();
+    for (int i : s) mean += x_[i];
+    mean /= static_cast<double>(s.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (int i : s) cov += (x_[i] - mean) * (x_[i] - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Vector3d a = eig.eigenvectors().col(0);
+    double radius = 0;
+    for (int i : s) {
+      const Vector3d d = x_[i] - mean;
+      radius += (d - d.dot(a) * a).norm();
+    }
+    radius /= static_cast<double>(s.size());
+    std::vector<double> q = {mean.x(), mean.y(), mean.z(), a.x(), a.y(), a.z(), radius};
+    const double rms = RefitPrimitiveLocally(NodeType::kCylinder, x_, s, &q, 30);
+    if (!(rms >= 0 && rms <= kMaxRmsSigmas * sigma_) || !Finite(q) ||
+        !Reasonable(NodeType::kCylinder, q))
+      return false;
+    *cylinder = std::move(q);
+    return true;
+  }
+
   struct Grown {
     std::vector<double> params;
     std::vector<int> support;
@@ -370,12 +424,18 @@ class Detector {
     std::vector<int> patch;
   };
 
-  // Seedable: the point's normal agrees (within theta) with those of its first 8 neighbours.
+  // Seedable: the point's normal agrees (within theta) with those of its first 8 neighbours; in
+  // the leftover pass, with those of them that are free (at least kMinFreeSeedNeighbours).
   bool Seedable(int i) const {
     if (nb_[i].empty()) return false;
-    for (size_t k = 0; k < std::min<size_t>(8, nb_[i].size()); ++k)
-      if (std::abs(n_[i].dot(n_[nb_[i][k]])) < cos_) return false;
-    return true;
+    int compared = 0;
+    for (size_t k = 0; k < std::min<size_t>(8, nb_[i].size()); ++k) {
+      const int j = nb_[i][k];
+      if (leftover_pass_ && labels_[j] >= 0) continue;
+      if (std::abs(n_[i].dot(n_[j])) < cos_) return false;
+      ++compared;
+    }
+    return !leftover_pass_ || compared >= kMinFreeSeedNeighbours;
   }
 
   // The split test of a curved winner W grown on U = `all` (u: its evenly spread subset, each
@@ -513,6 +573,8 @@ class Detector {
           explained[k] >= kSimplerFraction * explained[winner] &&
           (kinds[k] == NodeType::kPlane || costs[k] <= kSimplerCostRatio * costs[winner]))
         best = k;
+    // A sphere winner whose support a cylinder fits as well (BandCylinder) becomes that cylinder
+    // after the split test (see BandCylinder).
     // Split test: a curved winner that grew across a tangent joint is better explained by the
     // seed's other candidate plus primitives found on the rest of U.
     if (kinds[best] != NodeType::kPlane) {
@@ -523,21 +585,50 @@ class Detector {
     c.kind = kinds[best];
     c.params = std::move(grown[best].params);
     c.support = std::move(grown[best].support);
+    std::vector<double> band;
+    if (c.kind == NodeType::kSphere && CylinderKindAllowed() && BandCylinder(c.support, &band))
+      c.kind = NodeType::kCylinder, c.params = std::move(band);
     std::sort(c.support.begin(), c.support.end());
     return c;
   }
 
+  // The first pass, then the leftover pass: the points the first pass left free get normals
+  // re-estimated from their free neighbours only (fit/restricted_normals.h), and seeds are drawn
+  // among them (seedable against their free neighbours). A narrow surface between two faces (a
+  // cylinder ring two rows high, Fit4CAD PC34) has no seedable point in the first pass: its
+  // estimated normals are smeared by the faces beside it. Points the leftover pass does not
+  // assign get their original normals back.
   void Run(DetectionResult* result) {
     const int N = static_cast<int>(x_.size());
-    const int threads = ThreadCountOrDefault(options_.num_threads);
-    std::vector<Workspace> workspaces(threads);
-    // Seedable points: normal within theta of each of its first 8 neighbours (not on a crease).
     std::vector<int> pool;
     for (int i = 0; i < N; ++i)
       if (Seedable(i)) pool.push_back(i);
+    Rounds(std::move(pool), 0, result);
+    std::vector<char> free(N, 0);
+    int free_points = 0;
+    for (int i = 0; i < N; ++i) free_points += free[i] = labels_[i] < 0;
+    if (free_points < min_points_) return;
+    const std::vector<Vector3d> original = n_;
+    n_ = RestrictedNormals(x_, original, nb_, free);
+    leftover_pass_ = true;
+    pool.clear();
+    for (int i = 0; i < N; ++i)
+      if (free[i] && Seedable(i)) pool.push_back(i);
+    Rounds(std::move(pool), 1, result);
+    leftover_pass_ = false;
+    for (int i = 0; i < N; ++i)
+      if (labels_[i] < 0) n_[i] = original[i];
+  }
+
+  // Seed rounds from `pool` (seedable points) until the stop rule; `pass` enters the seeds' RNGs.
+  void Rounds(std::vector<int> pool, unsigned pass, DetectionResult* result) {
+    const int N = static_cast<int>(x_.size());
+    const int threads = ThreadCountOrDefault(options_.num_threads);
+    std::vector<Workspace> workspaces(threads);
     std::vector<char> tried(N, 0);
-    std::mt19937 rng(options_.seed);
-    int free_points = N, failures = 0;
+    std::mt19937 rng(options_.seed + pass);
+    int free_points = 0, failures = 0;
+    for (int i = 0; i < N; ++i) free_points += labels_[i] < 0;
     for (int round = 0; !pool.empty(); ++round) {
       // Seeds: uniform among the untried free seedable points (ineligible ones are dropped lazily).
       std::vector<int> seeds;
@@ -552,7 +643,11 @@ class Detector {
       if (seeds.empty()) break;
       std::vector<Candidate> candidates(seeds.size());
       ParallelFor(static_cast<int>(seeds.size()), threads, [&](int b, int t) {
-        std::seed_seq seq{options_.seed, static_cast<unsigned>(round), static_cast<unsigned>(b)};
+        // The first pass's sequence is unchanged by the leftover pass (same results before it).
+        std::vector<unsigned> words = {options_.seed, static_cast<unsigned>(round),
+                                       static_cast<unsigned>(b)};
+        if (pass > 0) words.push_back(pass);
+        std::seed_seq seq(words.begin(), words.end());
         std::mt19937 local(seq);
         candidates[b] = Propose(seeds[b], local, workspaces[t]);
       });
@@ -732,6 +827,9 @@ class Detector {
         std::vector<double> best_params;
         const int best = FitKindToSupport(kind, s, rng, &best_params);
         if (best < 0) continue;
+        if (p.kind == NodeType::kCylinder && kind == NodeType::kSphere &&
+            SphereZoneOfCylinder(best_params, p.parameters))
+          continue;  // the same surface on the cylinder's band: no simpler explanation
         if (best >= kSimplerFraction * own &&
             (kind == NodeType::kPlane ||
              PenalisedCost(kind, best_params, s) <= kSimplerCostRatio * own_cost)) {
@@ -822,6 +920,9 @@ class Detector {
         if (FitKindToSupport(kind, s, rng, &q) < 0) continue;
         const int supported = refit_on_supported(kind, &q);
         if (supported == 0 || supported >= own_supported) continue;
+        if (p.kind == NodeType::kCylinder && kind == NodeType::kSphere &&
+            SphereZoneOfCylinder(q, own_params))
+          continue;  // the same surface on P's band: the BIC alone would pick the sphere
         const double c = cost(kind, q);
         if (c < best_cost) {
           best_cost = c;
@@ -859,16 +960,25 @@ class Detector {
     ParallelFor(chunks, threads, [&](int c, int) {
       for (int i = static_cast<int>(static_cast<long>(N) * c / chunks);
            i < static_cast<long>(N) * (c + 1) / chunks; ++i) {
-        double best = tau_, best_any = tau_;
+        // Distance, then normal: a smaller |f| wins unless it is within sigma of the other (a
+        // point on the joint of two surfaces: Fit4CAD PC34's cylinder ring and the plane below
+        // it), then the normal closer to grad f wins. Among agreeing normals (labels), and among
+        // all within tau (fallback).
+        auto better = [&](double r, double cos, int current, double best_r, double best_cos) {
+          return current < 0 || r < best_r - sigma_ || (r < best_r + sigma_ && cos > best_cos);
+        };
+        double best = tau_, best_cos = 0, best_any = tau_, best_any_cos = 0;
         for (int k = 0; k < K; ++k) {
           if (!boxes[k].contains(x_[i])) continue;
           Vector3d g;
           const double r = std::abs(fs[k](x_[i], &g));
-          if (r >= best_any && r >= best) continue;
           const double gn = g.norm();
-          const bool normal_ok = gn > 0 && std::abs(g.dot(n_[i])) >= cos_ * gn;
-          if (normal_ok && r < best) best = r, labels[i] = k;
-          if (r < best_any) best_any = r, fallback[i] = k;
+          if (!(r < tau_) || !(gn > 0)) continue;
+          const double cos = std::abs(g.dot(n_[i])) / gn;
+          if (cos >= cos_ && better(r, cos, labels[i], best, best_cos))
+            best = r, best_cos = cos, labels[i] = k;
+          if (better(r, cos, fallback[i], best_any, best_any_cos))
+            best_any = r, best_any_cos = cos, fallback[i] = k;
         }
       }
     });
@@ -971,12 +1081,13 @@ class Detector {
 
  private:
   const std::vector<Vector3d>& x_;
-  const std::vector<Vector3d>& n_;
+  std::vector<Vector3d> n_;  // a copy: the leftover pass re-estimates the free points' normals
   const std::vector<std::vector<int>>& nb_;
   double tau_, cos_, sigma_;
   int min_points_;
   const DetectionOptions& options_;
   std::vector<int> labels_;
+  bool leftover_pass_ = false;
 };
 
 }  // namespace

@@ -51,6 +51,17 @@
 // when at least 80% of them remain. Detection stops when no seed is left or after
 // ln(0.01) / ln(1 - m / R) failed seeds in a row (a primitive of m = min_points points among R
 // remaining ones would have been seeded with 99% probability).
+// Leftover pass: the points still free then get normals re-estimated from their free neighbours
+// only (fit/restricted_normals.h: the faces beside a narrow surface no longer smear them), and the
+// rounds run again with seeds among them (seedable against their free neighbours, at least 3);
+// points it leaves free get their original normals back. (Fit4CAD PC34: a cylinder ring two rows
+// high between a plane and a dome has no seedable point in the first pass.)
+// Band cylinder: a seed's sphere whose support a cylinder fits within the RMS rule (axis along
+// the support's least spread, least-squares refitted, RMS <= 2 sigma) is a narrow band around a
+// circle, whose curvature across does not tell a sphere from a cylinder (only the BIC penalty
+// picked the sphere): the cylinder is taken. The final kind checks do not turn a cylinder into
+// a sphere that coincides with it along a great circle (centre on the axis, equal radii within
+// tau).
 // Final stage: each primitive is replaced by the simplest kind that explains 97% as many of its
 // points (hypotheses from its whole support and minimal samples; curved kinds within 2 times the
 // cost); pieces of one surface are merged (same kind,
@@ -62,8 +73,9 @@
 // short cylinder and its chamfer) replaces it when cheaper; every point is re-assigned to the
 // primitive explaining it best (|f| < tau; among those with agreeing normals the smallest |f|,
 // else, for points next to a primitive's support, the smallest |f| whatever the normal: creases
-// where estimated normals are smeared); each support is cut to its largest connected component;
-// primitives under min_points are dropped; every primitive gets the maximum-likelihood
+// where estimated normals are smeared; |f| within sigma of each other, a point on the joint of
+// two surfaces, go to the normal closer to grad f); each support is cut to its largest connected
+// component; primitives under min_points are dropped; every primitive gets the maximum-likelihood
 // refinement of `fit` on its points (fit/primitive_fitter.h, Ceres, with standard deviations).
 #pragma once
 
