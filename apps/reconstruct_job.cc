@@ -34,6 +34,18 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   for (size_t k = 0; k < primitives.size() && k < r.sides.size(); ++k)
     j["primitives"].push_back(
         {{"name", primitives[k].name}, {"side", r.sides[k]}, {"points", r.assigned[k]}});
+  // Planes no data lie on: closures close an open scan (their faces are not measured surfaces),
+  // separators split cells of the arrangement.
+  for (const auto& [key, planes] :
+       {std::pair<const char*, const std::vector<AddedPlane>*>{"closures", &r.closures},
+        {"separators", &r.separators}}) {
+    j[key] = nlohmann::json::array();
+    for (const AddedPlane& p : *planes)
+      j[key].push_back({{"name", p.name},
+                        {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}},
+                        {"offset", p.offset},
+                        {"measured", false}});
+  }
   j["blends"] = nlohmann::json::array();
   for (const BlendEstimate& b : r.blends)
     j["blends"].push_back(

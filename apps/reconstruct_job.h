@@ -6,7 +6,8 @@
 //    "inliers", "normal_sign_agreement", "unassigned", "seconds", "primitives": [{"name",
 //    "side", "points"}], "blends": [{"node", "type", "delta", "epsilon", "standard_deviations",
 //    "crease_angle_deg", "fillet_radius", "fillet_radius_standard_deviation",
-//    "transition_points"}]}
+//    "transition_points"}], "closures": [{"name", "normal", "offset", "measured": false}],
+//    "separators": [same]} (fit/solid_bounding.h: planes no data lie on)
 #pragma once
 
 #include <nlohmann/json.hpp>

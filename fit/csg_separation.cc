@@ -18,18 +18,27 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
     throw std::invalid_argument("SeparateCells: between 1 and 64 primitives");
   const std::uint64_t all = num_primitives == 64 ? ~0ULL : (1ULL << num_primitives) - 1;
   std::map<std::uint64_t, std::pair<int, int>> votes;  // cell -> (inside, outside)
+  std::map<std::uint64_t, bool> certain;               // cells with a certain outside sample
   for (const CsgSample& s : samples) {
     auto& v = votes[s.signs & all];
     (s.inside ? v.first : v.second) += 1;
+    if (s.certain && !s.inside) certain[s.signs & all] = true;
   }
+  std::vector<int> order = options.drop_order;
+  if (order.empty())
+    for (int k = 0; k < num_primitives; ++k) order.push_back(k);
+  for (int k : order)
+    if (k < 0 || k >= num_primitives)
+      throw std::invalid_argument("SeparateCells: drop_order names a literal out of range");
   CsgSeparation result;
   std::vector<std::uint64_t> inside_cells, outside_cells;
   for (const auto& [cell, v] : votes) {
-    if (v.first + v.second < options.min_cell_samples || v.first == v.second) {
+    const bool forced = certain.count(cell) > 0;
+    if (!forced && (v.first + v.second < options.min_cell_samples || v.first == v.second)) {
       ++result.unknown_cells;
       continue;
     }
-    const bool inside = v.first > v.second;
+    const bool inside = !forced && v.first > v.second;
     result.conflicting_samples += inside ? v.second : v.first;
     (inside ? inside_cells : outside_cells).push_back(cell);
   }
@@ -40,11 +49,12 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
   std::vector<CsgTerm> terms;
   for (std::uint64_t cell : inside_cells) {
     CsgTerm t{cell, ~cell & all};
-    for (int step = 0; step < 2 * num_primitives; ++step) {
+    const int n_order = static_cast<int>(order.size());
+    for (int step = 0; step < 2 * n_order; ++step) {
       // Negative literals first: positive ones bound the term, negative ones only carve it.
-      const int k = step % num_primitives;
+      const int k = order[step % n_order];
       const std::uint64_t bit = 1ULL << k;
-      if ((step < num_primitives) != ((t.outside & bit) != 0)) continue;
+      if ((step < n_order) != ((t.outside & bit) != 0)) continue;
       CsgTerm wider = t;
       wider.inside &= ~bit;
       wider.outside &= ~bit;

@@ -12,6 +12,8 @@
 //      then the positive ones, each in index order (positive literals bound a term, negative
 //      ones only carve it, so a boss keeps the slab's bottom rather than 'not the slab's top');
 //   2. terms whose inside cells are all covered by the other terms are dropped.
+// (The order of step 1 can be given: fit/solid_bounding.h's closures and separators first.) A
+// cell holding a `certain` outside sample is outside whatever its votes.
 // Outside samples on a shell around the object keep terms bounded (a term that would extend to
 // infinity meets them). Why this and not convex decomposition: the primitives of a CAD part are
 // not convex (bores, bosses), and separation works on any primitive kind and on concave
@@ -27,6 +29,8 @@ namespace implicitfit {
 struct CsgSample {
   std::uint64_t signs = 0;  // bit k: inside primitive k
   bool inside = false;      // the sample is inside the solid
+  bool certain = false;     // an outside sample that makes its cell outside whatever the votes
+                            // (a point outside the closure box: the solid is declared in it)
 };
 
 // One term of the union: intersection of the primitives in `inside` minus those in
@@ -37,6 +41,9 @@ struct CsgTerm {
 
 struct CsgSeparationOptions {
   int min_cell_samples = 3;  // cells with fewer samples are "don't care"
+  // The order in which literals are tried for dropping (empty: 0, 1, ...); literals tried
+  // first are dropped whenever possible (closures and separators before detected surfaces).
+  std::vector<int> drop_order;
 };
 
 struct CsgSeparation {

@@ -1,13 +1,16 @@
 #include "fit/solid_reconstruction.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <random>
 #include <stdexcept>
 
 #include "fit/csg_separation.h"
 #include "fit/primitive_fitter.h"
+#include "fit/solid_bounding.h"
 #include "fit/tree_covariance.h"
 
 namespace implicitfit {
@@ -127,79 +130,200 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     }
   }
 
-  // 3. Inside/outside samples and the separation.
+  // 3. Inside/outside samples and the separation, with separators and closures when needed
+  //    (fit/solid_bounding.h).
   std::mt19937_64 rng(options.seed);
   std::vector<size_t> assigned_points;
   for (size_t i = 0; i < N; ++i)
     if (label[i] >= 0) assigned_points.push_back(i);
+  std::vector<Vec> assigned_positions;
+  for (size_t i : assigned_points) assigned_positions.push_back(points[i]);
   std::shuffle(assigned_points.begin(), assigned_points.end(), rng);
   if (static_cast<int>(assigned_points.size()) > options.max_samples)
     assigned_points.resize(options.max_samples);
-  auto signs_at = [&](const Vec& x) {
-    std::uint64_t s = 0;
-    for (int k = 0; k < K; ++k)
-      if (prim[k].Value(x) < 0) s |= 1ULL << k;
-    return s;
-  };
-  std::vector<CsgSample> samples;
-  const double t = options.offset * diag;
-  for (size_t i : assigned_points) {
-    samples.push_back({signs_at(points[i] - t * normals[i]), true});
-    samples.push_back({signs_at(points[i] + t * normals[i]), false});
-  }
-  const Vec shell_lo = lo - 0.1 * (hi - lo), shell_hi = hi + 0.1 * (hi - lo);
-  std::vector<Vec> shell;
-  const int grid = 16;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int face = 0; face < 2; ++face)
-      for (int u = 0; u <= grid; ++u)
-        for (int v = 0; v <= grid; ++v) {
-          Vec x;
-          x[axis] = face ? shell_hi[axis] : shell_lo[axis];
-          const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-          x[a1] = shell_lo[a1] + (shell_hi[a1] - shell_lo[a1]) * u / grid;
-          x[a2] = shell_lo[a2] + (shell_hi[a2] - shell_lo[a2]) * v / grid;
-          shell.push_back(x);
-        }
-  for (const Vec& x : shell) samples.push_back({signs_at(x), false});
-  const CsgSeparation sep = SeparateCells(samples, K);
+  // Literals: the primitives, then separators and closures (fixed planes).
+  std::vector<Model> lit = prim;
   std::vector<std::string> names;
   for (int k = 0; k < K; ++k)
     names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
-  out.expression = CsgExpressionText(sep.terms, names);
-
-  // The sharp tree: union of difference(intersection(positives), negatives).
-  Model& m = out.model;
-  const double placeholder = 1e-3 * diag;
-  std::vector<int> term_nodes;
-  for (const CsgTerm& term : sep.terms) {
-    std::vector<int> pos, neg;
-    for (int k = 0; k < K; ++k) {
-      if (term.inside >> k & 1) pos.push_back(CopyNode(prim[k], prim[k].root(), &m));
-      if (term.outside >> k & 1) neg.push_back(CopyNode(prim[k], prim[k].root(), &m));
-    }
-    if (pos.empty()) continue;  // unbounded (only complements): cannot be part of a solid
-    int node = pos.size() == 1
-                   ? pos[0]
-                   : m.AddOperator(NodeType::kIntersection, pos, placeholder, placeholder, 0);
-    if (!neg.empty()) {
-      std::vector<int> children = {node};
-      children.insert(children.end(), neg.begin(), neg.end());
-      node = m.AddOperator(NodeType::kDifference, children, placeholder, placeholder, 0);
-    }
-    term_nodes.push_back(node);
+  std::vector<int> literal_kind(K, 0);  // 0 primitive, 1 separator, 2 closure
+  std::vector<PlaneLiteral> literal_plane(K);
+  // Samples: positions, inside flags, sign vectors over the literals.
+  std::vector<Vec> sx;
+  std::vector<bool> sin;
+  const double t = options.offset * diag;
+  for (size_t i : assigned_points) {
+    sx.push_back(points[i] - t * normals[i]);
+    sin.push_back(true);
+    sx.push_back(points[i] + t * normals[i]);
+    sin.push_back(false);
   }
-  if (term_nodes.empty()) {
+  const size_t offset_samples = sx.size();
+  auto make_shell = [](const Vec& shell_lo, const Vec& shell_hi) {
+    std::vector<Vec> shell;
+    const int grid = 16;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int face = 0; face < 2; ++face)
+        for (int u = 0; u <= grid; ++u)
+          for (int v = 0; v <= grid; ++v) {
+            Vec x;
+            x[axis] = face ? shell_hi[axis] : shell_lo[axis];
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            x[a1] = shell_lo[a1] + (shell_hi[a1] - shell_lo[a1]) * u / grid;
+            x[a2] = shell_lo[a2] + (shell_hi[a2] - shell_lo[a2]) * v / grid;
+            shell.push_back(x);
+          }
+    return shell;
+  };
+  std::vector<Vec> shell = make_shell(lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo));
+  std::vector<std::uint64_t> signs(sx.size() + shell.size(), 0);
+  auto sample_at = [&](size_t s) -> const Vec& {
+    return s < offset_samples ? sx[s] : shell[s - offset_samples];
+  };
+  auto set_literal_bits = [&](int k) {
+    for (size_t s = 0; s < signs.size(); ++s)
+      if (lit[k].Value(sample_at(s)) < 0) signs[s] |= 1ULL << k;
+  };
+  for (int k = 0; k < K; ++k) set_literal_bits(k);
+  auto add_plane_literal = [&](const PlaneLiteral& plane, int kind) {
+    const int k = static_cast<int>(lit.size());
+    names.push_back((kind == 1 ? "separator" : "closure") +
+                    std::to_string(std::count(literal_kind.begin(), literal_kind.end(), kind)));
+    lit.push_back(plane.ToModel(names.back()));
+    literal_kind.push_back(kind);
+    literal_plane.push_back(plane);
+    set_literal_bits(k);
+  };
+  bool closed = false;  // closures added: cells outside the closure box are outside
+  auto separate = [&]() {
+    std::vector<CsgSample> samples(signs.size());
+    for (size_t s = 0; s < signs.size(); ++s)
+      samples[s] = {signs[s], s < offset_samples && sin[s], closed && s >= offset_samples};
+    CsgSeparationOptions so;
+    for (int kind : {2, 1, 0})  // closures, then separators, then detected surfaces
+      for (int k = 0; k < static_cast<int>(lit.size()); ++k)
+        if (literal_kind[k] == kind) so.drop_order.push_back(k);
+    return SeparateCells(samples, static_cast<int>(lit.size()), so);
+  };
+  // The sharp tree: union of difference(intersection(positives), negatives).
+  const double placeholder = 1e-3 * diag;
+  auto build_tree = [&](const CsgSeparation& sep) {
+    Model tree;
+    std::vector<int> term_nodes;
+    for (const CsgTerm& term : sep.terms) {
+      std::vector<int> pos, neg;
+      for (int k = 0; k < static_cast<int>(lit.size()); ++k) {
+        if (term.inside >> k & 1) pos.push_back(CopyNode(lit[k], lit[k].root(), &tree));
+        if (term.outside >> k & 1) neg.push_back(CopyNode(lit[k], lit[k].root(), &tree));
+      }
+      if (pos.empty()) continue;  // unbounded (only complements): cannot be part of a solid
+      int node = pos.size() == 1
+                     ? pos[0]
+                     : tree.AddOperator(NodeType::kIntersection, pos, placeholder, placeholder, 0);
+      if (!neg.empty()) {
+        std::vector<int> children = {node};
+        children.insert(children.end(), neg.begin(), neg.end());
+        node = tree.AddOperator(NodeType::kDifference, children, placeholder, placeholder, 0);
+      }
+      term_nodes.push_back(node);
+    }
+    if (term_nodes.empty()) return tree;
+    tree.SetRoot(term_nodes.size() == 1
+                     ? term_nodes[0]
+                     : tree.AddOperator(NodeType::kUnion, term_nodes, placeholder, placeholder, 0));
+    return tree;
+  };
+  auto bounded_on_shell = [&](const Model& tree) {
+    if (tree.nodes().empty()) return false;
+    for (const Vec& x : shell)
+      if (!(tree.Value(x) > 0)) return false;
+    return true;
+  };
+  const std::vector<Vec> directions = SeparatorDirections(prim);
+  const int min_conflict =
+      std::max(options.min_conflict_samples,
+               static_cast<int>(std::ceil(options.min_conflict_fraction * signs.size())));
+  CsgSeparation sep;
+  Model& m = out.model;
+  for (;;) {
+    // Separators: split the most mixed cell while a plane separates it well.
+    for (int round = 0;; ++round) {
+      sep = separate();
+      if (round >= options.max_separators || lit.size() + (closed ? 0 : 6) >= 64) break;
+      std::map<std::uint64_t, std::pair<int, int>> votes;
+      for (size_t s = 0; s < signs.size(); ++s) {
+        if (closed && s >= offset_samples) continue;  // certain: not a vote
+        auto& v = votes[signs[s]];
+        (s < offset_samples && sin[s] ? v.first : v.second) += 1;
+      }
+      std::uint64_t worst = 0;
+      int worst_minority = 0;
+      for (const auto& [cell, v] : votes) {
+        const int minority = std::min(v.first, v.second);
+        if (minority >= min_conflict && minority >= 0.1 * (v.first + v.second) &&
+            minority > worst_minority) {
+          worst = cell;
+          worst_minority = minority;
+        }
+      }
+      if (worst_minority == 0) break;
+      std::vector<Vec> cell_x;
+      std::vector<bool> cell_in;
+      for (size_t s = 0; s < signs.size(); ++s)
+        if (signs[s] == worst && !(closed && s >= offset_samples)) {
+          cell_x.push_back(sample_at(s));
+          cell_in.push_back(s < offset_samples && sin[s]);
+        }
+      const StumpSplit split = BestStump(cell_x, cell_in, directions);
+      if (!split.found || split.errors > 0.5 * worst_minority) break;
+      add_plane_literal(split.plane, 1);
+    }
+    m = build_tree(sep);
+    if (closed || bounded_on_shell(m)) break;
+    if (lit.size() + 6 > 64) break;
+    // Closures: the box around the assigned points in the part's frame; a new shell around it.
+    closed = true;
+    const std::vector<PlaneLiteral> faces =
+        ClosureBox(ClosureFrame(prim, out.assigned, assigned_positions), assigned_positions,
+                   options.closure_margin * diag);
+    Vec box_lo = Vec::Constant(1e300), box_hi = Vec::Constant(-1e300);
+    for (int corner = 0; corner < 8; ++corner) {
+      // the box's corners: intersections of one face of each pair
+      Eigen::Matrix3d a;
+      Vec b;
+      for (int axis = 0; axis < 3; ++axis) {
+        const PlaneLiteral& f = faces[2 * axis + (corner >> axis & 1)];
+        a.row(axis) = f.normal.transpose();
+        b[axis] = f.offset;
+      }
+      const Vec x = a.inverse() * b;
+      box_lo = box_lo.cwiseMin(x);
+      box_hi = box_hi.cwiseMax(x);
+    }
+    shell = make_shell(box_lo - 0.1 * (box_hi - box_lo), box_hi + 0.1 * (box_hi - box_lo));
+    signs.resize(offset_samples + shell.size());
+    for (size_t s = offset_samples; s < signs.size(); ++s) {
+      signs[s] = 0;
+      for (int k = 0; k < static_cast<int>(lit.size()); ++k)
+        if (lit[k].Value(shell[s - offset_samples]) < 0) signs[s] |= 1ULL << k;
+    }
+    for (const PlaneLiteral& f : faces) add_plane_literal(f, 2);
+  }
+  out.expression = CsgExpressionText(sep.terms, names);
+  for (int k = K; k < static_cast<int>(lit.size()); ++k) {
+    bool used = false;
+    for (const CsgTerm& term : sep.terms) used = used || ((term.inside | term.outside) >> k & 1);
+    if (!used) continue;
+    (literal_kind[k] == 1 ? out.separators : out.closures)
+        .push_back({names[k], literal_plane[k].normal, literal_plane[k].offset});
+  }
+  if (m.nodes().empty()) {
     out.message = "the oriented cloud gives no bounded Boolean expression over the primitives (" +
                   std::to_string(sep.inside_cells) + " inside cells)";
     return out;
   }
-  m.SetRoot(term_nodes.size() == 1
-                ? term_nodes[0]
-                : m.AddOperator(NodeType::kUnion, term_nodes, placeholder, placeholder, 0));
   for (ModelNode& node : m.mutable_nodes())
     if (IsOperator(node.type)) node.fixed = {"delta", "epsilon"};
-
   // 4. Blends from the transition points.
   const double h = 1e-6 * diag;
   const double tau_all = *std::max_element(tau.begin(), tau.end());

@@ -8,7 +8,10 @@
 //      are inside / outside, points on a box 10% larger than the cloud's are outside;
 //      fit/csg_separation.h turns them into a union of terms, each term
 //      difference(intersection(positive literals), negative literals) (no complement node needed:
-//      every bounded term has a positive literal);
+//      every bounded term has a positive literal). While a cell of the arrangement holds many
+//      inside and many outside samples, a separating plane is added (fit/solid_bounding.h); when
+//      the solid is still unbounded (an open scan), the closure box's faces are added and the
+//      solid declared inside it; the closure faces used are reported as not measured;
 //   4. blends: an operator is made smooth (Li & Phillips, order 3) when enough points fit
 //      neither primitive but lie in its crease region: the two most active children w_a, w_b
 //      (subtrahends negated) are in [-R, tau] (R = max_fillet of the diagonal) and the normal
@@ -46,6 +49,12 @@ struct SolidReconstructionOptions {
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
   int max_samples = 20000;  // inside/outside samples drawn from the assigned points
+  // Separators (fit/solid_bounding.h): a cell is mixed when its minority has at least
+  // max(min_conflict_samples, min_conflict_fraction of all samples) and 10% of its samples.
+  int max_separators = 16;
+  int min_conflict_samples = 20;
+  double min_conflict_fraction = 0.005;
+  double closure_margin = 0.02;  // closure box: the assigned points' box + this of the diagonal
   unsigned seed = 1;
   TreeFitOptions tree;
 };
@@ -57,6 +66,13 @@ struct BlendEstimate {
   double delta = 0, epsilon = 0, sd_delta = 0, sd_epsilon = 0;
   double crease_angle_deg = 0;  // phi, median over the transition points
   double fillet_radius = 0, sd_fillet_radius = 0;
+};
+
+// A plane the reconstruction added that is not a detected surface: f = normal . x - offset.
+struct AddedPlane {
+  std::string name;  // "separator0", "closure2", ... as in the expression and the model
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double offset = 0.0;
 };
 
 struct SolidReconstruction {
@@ -73,6 +89,9 @@ struct SolidReconstruction {
   int inliers = 0;
   double normal_agreement = 0.0;      // share of inliers with n . grad f > 0
   std::vector<BlendEstimate> blends;  // smooth operators only
+  // Planes in the expression that no data lie on: separators split cells of the arrangement;
+  // closures close the solid where the scan has no data (their faces are not measured).
+  std::vector<AddedPlane> separators, closures;
   double seconds = 0.0;
 };
 

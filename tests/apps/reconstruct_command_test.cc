@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "support/run_command.h"
@@ -104,6 +105,57 @@ TEST(ReconstructCommand, WithoutASceneItDetectsThePrimitivesItself) {
   EXPECT_GE(report["normal_sign_agreement"].get<double>(), 0.99);
   EXPECT_LE(report["rms_distance"].get<double>(), 1.5 * 0.002);
   EXPECT_TRUE(FileExists(dir + "/model.json"));
+}
+
+// An open scan: the box without its bottom face (points whose normal is -z removed) and a scene
+// of its five seen faces gives a solid closed by one closure plane, reported as not measured.
+TEST(ReconstructCommand, OpenScanIsClosedAndTheClosureReported) {
+  const std::string dir = ScratchDir("reconstruct_open");
+  WriteText(dir + "/sharp.json",
+            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "intersection",
+    "delta": 0.1, "epsilon": 0.05, "order": 0, "children": [)" +
+                Plane(0, -1, 1.0) + "," + Plane(0, 1, 1.0) + "," + Plane(1, -1, 0.7) + "," +
+                Plane(1, 1, 0.7) + "," + Plane(2, -1, 0.5) + "," + Plane(2, 1, 0.5) + "]}}");
+  ASSERT_EQ(RunCommand(kCli + " sample " + dir +
+                       "/sharp.json --count 5000 --noise 0.002 --seed 4 --out " + dir + "/all.xyz")
+                .exit_code,
+            0);
+  std::string kept;
+  int count = 0;
+  {
+    std::istringstream in(Slurp(dir + "/all.xyz"));
+    std::string line;
+    while (std::getline(in, line)) {
+      std::istringstream fields(line);
+      double v[6];
+      for (double& x : v) fields >> x;
+      if (!fields || v[5] < -0.9) continue;  // the bottom face is not scanned
+      kept += line + "\n";
+      ++count;
+    }
+  }
+  WriteText(dir + "/cloud.xyz", kept);
+  std::string scene;
+  const int axis[5] = {0, 0, 1, 1, 2}, sign[5] = {-1, 1, -1, 1, 1};
+  const double half[3] = {1.0, 0.7, 0.5};
+  for (int k = 0; k < 5; ++k)
+    scene += std::string(k ? "," : "") + R"({"name": "p)" + std::to_string(k) + R"(", "model": )" +
+             Plane(axis[k], sign[k], half[axis[k]]) +
+             R"(, "points": 100, "rms_distance": 0.002, "normal_side": "outward"})";
+  WriteText(dir + "/open_scene.json",
+            R"({"format": "implicitfit-scene", "version": 1, "cloud": "cloud.xyz", "points": )" +
+                std::to_string(count) + R"(, "unassigned": 0, "primitives": [)" + scene + "]}");
+  const auto r =
+      RunCommand(kCli + " reconstruct " + dir + "/cloud.xyz --scene " + dir +
+                 "/open_scene.json --out " + dir + "/model.json --report " + dir + "/report.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(Slurp(dir + "/report.json"));
+  EXPECT_TRUE(report["bounded"].get<bool>());
+  ASSERT_EQ(report["closures"].size(), 1u);
+  EXPECT_FALSE(report["closures"][0]["measured"].get<bool>());
+  EXPECT_LT(report["closures"][0]["normal"][2].get<double>(), -0.9999);
+  EXPECT_EQ(report["separators"].size(), 0u);
+  EXPECT_NE(Slurp(dir + "/model.json").find("\"closure0\""), std::string::npos);
 }
 
 TEST(ReconstructCommand, UsageErrorsExitTwoWithoutOutput) {
