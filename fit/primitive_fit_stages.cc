@@ -98,9 +98,9 @@ std::vector<double> RansacHypothesis(const FittablePrimitive& entry,
       best = h;
       const double w = std::min(0.999, static_cast<double>(score) / sub.size());
       const double k = std::log(1.0 - options.confidence) / std::log(1.0 - std::pow(w, m));
-      if (std::isfinite(k))
-        needed =
-            std::clamp(static_cast<int>(std::ceil(k)), options.min_hypotheses, options.hypotheses);
+      if (std::isfinite(k))  // clamped as a double: k reaches 1e13 when w is small (UBSan)
+        needed = static_cast<int>(
+            std::clamp(std::ceil(k), double(options.min_hypotheses), double(options.hypotheses)));
     }
   }
   return best;

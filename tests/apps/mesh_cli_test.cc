@@ -102,7 +102,7 @@ TEST(MeshCli, InvalidOptionsExit2AndNoModel) {
   auto r = RunCommand(kCli + " fit " + cloud +
                       " --model patch-mesh --convex --continuity 0 --out " + dir + "/m.json");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--continuity"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("convex needs continuity 1"), std::string::npos) << r.err;
   r = RunCommand(kCli + " fit " + cloud + " --model patch-mesh --cells 2 --cell 0.5 --out " + dir +
                  "/m.json");
   EXPECT_EQ(r.exit_code, 2);
