@@ -23,6 +23,7 @@
 #include "datasets/model_sampler.h"
 #include "fit/csg_separation.h"
 #include "fit/solid_reconstruction.h"
+#include "support/sign_agreement.h"
 
 namespace implicitfit {
 namespace {
@@ -157,21 +158,11 @@ TEST(SolidClosure, BoxScannedWithoutItsBottom) {
 
   // Signs on the seen part: farther than 3% of the box from the truth surface, and above the
   // bottom face by more than that.
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0, 1);
   const Vec box_lo = -1.2 * half, box_hi = 1.2 * half;
   const double away = 0.03 * (box_hi - box_lo).maxCoeff();
-  int tested = 0, agree = 0;
-  while (tested < 20000) {
-    Vec x;
-    for (int k = 0; k < 3; ++k) x[k] = box_lo[k] + u(rng) * (box_hi[k] - box_lo[k]);
-    double f;
-    const Vec g = truth.Gradient(x, &f);
-    if (std::abs(f) / g.norm() <= away || x.z() < -half.z() + away) continue;
-    ++tested;
-    agree += (f < 0) == (r.model.Value(x) < 0);
-  }
-  const double share = static_cast<double>(agree) / tested;
+  const double share =
+      testsupport::SignAgreement(truth, r.model, box_lo, box_hi, away, 11,
+                                 [&](const Vec& x) { return x.z() >= -half.z() + away; });
   std::printf("  closure z %.4f (expected %.4f), sign agreement on the seen part %.4f\n",
               -closure.offset / -closure.normal.z(), expected, share);
   EXPECT_GE(share, 0.99);
@@ -227,20 +218,8 @@ TEST(SolidSeparator, BallOnStem) {
     EXPECT_GT(z, 0.0);
     EXPECT_LT(z, 2.3);
   }
-  std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> u(0, 1);
   const double away = 0.03 * (box_hi - box_lo).maxCoeff();
-  int tested = 0, agree = 0;
-  while (tested < 20000) {
-    Vec x;
-    for (int k = 0; k < 3; ++k) x[k] = box_lo[k] + u(rng) * (box_hi[k] - box_lo[k]);
-    double f;
-    const Vec g = truth.Gradient(x, &f);
-    if (std::abs(f) / g.norm() <= away) continue;
-    ++tested;
-    agree += (f < 0) == (r.model.Value(x) < 0);
-  }
-  const double share = static_cast<double>(agree) / tested;
+  const double share = testsupport::SignAgreement(truth, r.model, box_lo, box_hi, away, 12);
   std::printf("  sign agreement %.4f\n", share);
   EXPECT_GE(share, 0.99);
 }

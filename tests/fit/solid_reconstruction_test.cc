@@ -15,6 +15,7 @@
 #include "datasets/generated_solids.h"
 #include "datasets/model_sampler.h"
 #include "fit/csg_separation.h"
+#include "support/sign_agreement.h"
 
 namespace implicitfit {
 namespace {
@@ -68,21 +69,10 @@ void CheckReconstruction(const GeneratedSolid& solid, unsigned seed) {
   EXPECT_LE(rms, 3 * sigma);
 
   // Sign agreement away from the surface.
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
   const Vec lo = solid.box_min - 0.1 * (solid.box_max - solid.box_min);
   const Vec hi = solid.box_max + 0.1 * (solid.box_max - solid.box_min);
-  int tested = 0, agree = 0;
-  while (tested < 20000) {
-    Vec x;
-    for (int k = 0; k < 3; ++k) x[k] = lo[k] + u(rng) * (hi[k] - lo[k]);
-    double f;
-    const Vec g = solid.truth.Gradient(x, &f);
-    if (std::abs(f) / g.norm() <= 0.03 * (hi - lo).maxCoeff()) continue;
-    ++tested;
-    agree += (f < 0) == (r.model.Value(x) < 0);
-  }
-  const double sign_share = static_cast<double>(agree) / tested;
+  const double sign_share =
+      testsupport::SignAgreement(solid.truth, r.model, lo, hi, 0.03 * (hi - lo).maxCoeff(), seed);
   EXPECT_GE(sign_share, 0.99);
 
   // Fillets: one smooth blend, its radius within 10% of the truth's (creases at 90 degrees).
