@@ -16,7 +16,7 @@ cmake --build "$build_dir" -j "$(nproc)" --target implicitfit implicitfit_model 
 cmake --install "$build_dir" --prefix "$prefix" --component Unspecified >/dev/null
 echo "examples: installed to $prefix" >&2
 cmake -S examples -B "$prefix/examples-build" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+  -DCMAKE_PREFIX_PATH="$prefix" "${compiler_options[@]}" >/dev/null
 cmake --build "$prefix/examples-build" -j "$(nproc)"
 "$prefix/examples-build/fit_sphere" datasets/data/cgal_sphere_single.xyz
 "$prefix/examples-build/convex_patch"
