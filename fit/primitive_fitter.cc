@@ -101,6 +101,16 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
   for (int r = 0; r < options.max_rounds; ++r) {
     const size_t floor = has_normals ? options.min_inliers : FreeParameterCount(kind) + 1;
     const size_t min_needed = std::max<size_t>(floor, options.min_inlier_fraction * pool->size());
+    if (inliers.size() < min_needed && options.estimator != Estimator::kRobust) {
+      // Least squares and minimum zone use every point afterwards (fit/estimator_stage.h): the
+      // robust rounds only give them a start, which a short inlier set ends instead of failing
+      // (6 exact points on a cylinder: one can fall outside the band of an early iterate).
+      if (round.problem) {
+        settled = true;  // the inlier set plays no part in what follows
+        break;
+      }
+      inliers = *pool;
+    }
     if (inliers.size() < min_needed) {
       result.message = "too few inliers: " + std::to_string(inliers.size()) + " of " +
                        std::to_string(N) + " points (need " + std::to_string(min_needed) + ")";

@@ -119,6 +119,9 @@ TEST(ShapeKindsOverSeeds, BoxCentreAndSizesWithinCramerRao) {
     const std::vector<double> sd = ReportedSd(r, s.cloud.points);
     centre.Add(Vec(p[0], p[1], p[2]) - c, testsupport::Spread(cov, 0, 3), Norm(sd, 0, 3));
     sizes.Add(Vec(p[7], p[8], p[9]) - h, testsupport::Spread(cov, 6, 3), Norm(sd, 7, 3));
+    std::printf("  seed %2d: centre error %.3g, half sizes error %.3g (CR %.3g), %d iterations\n",
+                seed, (Vec(p[0], p[1], p[2]) - c).norm(), (Vec(p[7], p[8], p[9]) - h).norm(),
+                testsupport::Spread(cov, 6, 3), r.iterations);
   }
   centre.Print();
   sizes.Print();

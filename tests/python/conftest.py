@@ -54,8 +54,12 @@ def data_dir():
 
 
 def run(*args):
-    """Runs a command, returns (exit code, stdout, stderr)."""
-    r = subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=600)
+    """Runs a command, returns (exit code, stdout, stderr). Under the sanitizers the interpreter
+    has the shared ASan runtime preloaded (tests/python/CMakeLists.txt); the command line carries
+    its own static one, so the preload is not passed on to it (the two refuse to mix)."""
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+    r = subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=600,
+                       env=env)
     return r.returncode, r.stdout, r.stderr
 
 
