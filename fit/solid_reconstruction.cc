@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "fit/csg_separation.h"
+#include "fit/offset_samples.h"
 #include "fit/primitive_fitter.h"
 #include "fit/solid_bounding.h"
 #include "fit/tree_covariance.h"
@@ -153,9 +154,11 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   std::vector<bool> sin;
   const double t = options.offset * diag;
   for (size_t i : assigned_points) {
-    sx.push_back(points[i] - t * normals[i]);
+    const OffsetSamplePair pair =
+        OffsetSamples(points[i], normals[i], label[i], prim, t, options.adaptive_offset);
+    sx.push_back(pair.inside);
     sin.push_back(true);
-    sx.push_back(points[i] + t * normals[i]);
+    sx.push_back(pair.outside);
     sin.push_back(false);
   }
   const size_t offset_samples = sx.size();

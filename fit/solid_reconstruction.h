@@ -4,8 +4,9 @@
 //   2. orientation: a primitive is material-inside when most of its points' normals agree in
 //      sign with grad f_k, a hole otherwise (a bore: the cylinder is subtracted); planes are
 //      flipped so that f < 0 is their material side;
-//   3. the Boolean expression: samples p -+ t n (t = 1% of the diagonal) of the assigned points
-//      are inside / outside, points on a box 10% larger than the cloud's are outside;
+//   3. the Boolean expression: samples p -+ t n (t = 1% of the diagonal, shortened to half the
+//      distance to the next surface along the normal: fit/offset_samples.h) of the assigned
+//      points are inside / outside, points on a box 10% larger than the cloud's are outside;
 //      fit/csg_separation.h turns them into a union of terms, each term
 //      difference(intersection(positive literals), negative literals) (no complement node needed:
 //      every bounded term has a positive literal). While a cell of the arrangement holds many
@@ -43,9 +44,11 @@ struct SolidPrimitive {
 };
 
 struct SolidReconstructionOptions {
-  double max_fillet = 0.1;         // R: largest fillet considered, fraction of the diagonal
-  double offset = 0.01;            // t of the inside/outside samples, fraction of the diagonal
-  int min_transition_points = 20;  // a blend needs at least this many transition points
+  double max_fillet = 0.1;  // R: largest fillet considered, fraction of the diagonal
+  double offset = 0.01;     // t of the inside/outside samples, fraction of the diagonal
+  // Shorten t where another surface lies within t along the normal (fit/offset_samples.h).
+  bool adaptive_offset = true;
+  int min_transition_points = 20;          // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
   int max_samples = 20000;  // inside/outside samples drawn from the assigned points
