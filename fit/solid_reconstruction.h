@@ -21,7 +21,11 @@
 //      delta) + delta / 2 = 0 in its parabolic zone; epsilon at 0.6 delta. Other operators are
 //      sharp (order 0, delta and epsilon fixed);
 //   5. every free parameter is refined with the tree fitter (fit/tree_fitter.h) on the points
-//      within R of the initial model; standard deviations from fit/tree_covariance.h.
+//      within R of the initial model; standard deviations from fit/tree_covariance.h. Only the
+//      smooth operators and the primitives below them are free: a primitive under sharp
+//      operators only keeps the primitive fitter's parameters (a point's residual there depends
+//      on that primitive alone, which was fitted to its own points), and a tree without a blend
+//      is not refitted (the fit over a whole tree of 18 primitives took hours on Fit4CAD PC131).
 // The implied fillet radius of a blend: on the bisector of two faces whose outward normals make
 // the angle phi, the blended zero set sits at distance delta / 4 from both faces (a = b:
 // 2a + delta / 2 = 0); a circular fillet of radius rho tangent to both has its arc there when
@@ -96,6 +100,8 @@ struct SolidReconstruction {
   // closures close the solid where the scan has no data (their faces are not measured).
   std::vector<AddedPlane> separators, closures;
   double seconds = 0.0;
+  double fit_seconds = 0.0;  // of which the joint refinement (step 5)
+  int fit_iterations = 0;
 };
 
 SolidReconstruction ReconstructSolid(const std::vector<Eigen::Vector3d>& points,
