@@ -31,6 +31,7 @@
 // figure.
 //   build/bench/solid_comparison [--points 20000] [--outliers 0] [--seed 1] [--only NAME]
 //                                [--cells 256] [--fit-iterations n] [--no-poisson 1]
+//                                [--fixed-offset 1]
 // stderr: each implicitfit expression and where its Hausdorff distance is reached.
 #include <pcl/PolygonMesh.h>
 #include <pcl/conversions.h>
@@ -439,6 +440,7 @@ bool CgalBoxCase(const std::string& data, Case* c, std::string* why) {
 int g_cells = 256;         // cells of implicitfit's mesh on the longest side (--cells)
 int g_fit_iterations = 0;  // --fit-iterations: the tree fitter's iterations per pass (0: default)
 bool g_poisson = true;     // --no-poisson: implicitfit's row only
+bool g_adaptive = true;    // --fixed-offset 1: the inside/outside samples at the fixed offset
 
 void RunCase(const Case& c, unsigned seed) {
   // implicitfit: reconstruct (from the labelled scene, or detect), mesh at g_cells cells.
@@ -459,6 +461,7 @@ void RunCase(const Case& c, unsigned seed) {
       implicitfit::SolidReconstructionOptions ro;
       ro.seed = seed;
       if (g_fit_iterations > 0) ro.tree.max_iterations = g_fit_iterations;
+      ro.adaptive_offset = g_adaptive;
       r = implicitfit::ReconstructSolid(c.points, c.normals, c.primitives, ro);
     }
     if (r.success) {
@@ -576,6 +579,8 @@ int main(int argc, char** argv) {
       g_fit_iterations = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--no-poisson") && !std::strcmp(argv[i + 1], "1"))
       g_poisson = false;
+    else if (!std::strcmp(argv[i], "--fixed-offset") && !std::strcmp(argv[i + 1], "1"))
+      g_adaptive = false;
   }
   std::printf(
       "| cloud | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight "

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "fit/csg_separation.h"
+#include "fit/fillet_separators.h"
 #include "fit/offset_samples.h"
 #include "fit/primitive_fitter.h"
 #include "fit/solid_bounding.h"
@@ -252,13 +253,40 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     literal_plane.push_back(plane);
     set_literal_bits(k);
   };
+  // Concave fillets (tori that are holes): the box of revolution of their points
+  // (fit/fillet_separators.h): two planes (separators) and two coaxial cylinders (kind 3).
+  std::map<int, CylinderLiteral> literal_cylinder;
+  std::vector<std::pair<int, int>> fillet_outer;  // (hole torus, its outer cylinder) literals
+  for (int k = 0; k < K; ++k) {
+    if (!options.fillet_separators || out.sides[k] != "hole" || lit.size() + 4 > 58) continue;
+    std::vector<Vec> on_torus;
+    for (size_t i = 0; i < N; ++i)
+      if (label[i] == k) on_torus.push_back(points[i]);
+    FilletBounds bounds;
+    if (!FilletBoundsOf(prim[k], on_torus, t / 8, &bounds)) continue;
+    add_plane_literal(bounds.low, 1);
+    add_plane_literal(bounds.high, 1);
+    for (const bool outer : {false, true}) {
+      const CylinderLiteral& c = outer ? bounds.outer : bounds.inner;
+      if (!(c.radius > 0)) continue;
+      const int j = static_cast<int>(lit.size());
+      if (outer) fillet_outer.push_back({k, j});
+      names.push_back("separator_cylinder" + std::to_string(literal_cylinder.size()));
+      lit.push_back(c.ToModel(names.back()));
+      literal_kind.push_back(3);
+      literal_plane.push_back(PlaneLiteral{});
+      literal_cylinder[j] = c;
+      set_literal_bits(j);
+    }
+  }
   bool closed = false;  // closures added: cells outside the closure box are outside
   auto separate = [&]() {
     std::vector<CsgSample> samples(signs.size());
     for (size_t s = 0; s < signs.size(); ++s)
       samples[s] = {signs[s], s < offset_samples && sin[s], closed && s >= offset_samples};
     CsgSeparationOptions so;
-    for (int kind : {2, 1, 0})  // closures, then separators, then detected surfaces
+    // closures, then separators (fillets' cylinders first), then detected surfaces
+    for (int kind : {2, 3, 1, 0})
       for (int k = 0; k < static_cast<int>(lit.size()); ++k)
         if (literal_kind[k] == kind) so.drop_order.push_back(k);
     return SeparateCells(samples, static_cast<int>(lit.size()), so);
@@ -367,11 +395,35 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     }
     for (const PlaneLiteral& f : faces) add_plane_literal(f, 2);
   }
+  // A term that carves a concave fillet's tube out (negated hole torus) keeps the fillet's outer
+  // cylinder when (all but 1% of) its inside samples are in it: the shell's samples may all lie
+  // in the tube (Fit4CAD PC124), so that nothing else bounds the term radially.
+  bool tightened = false;
+  for (CsgTerm& term : sep.terms)
+    for (const auto& [torus, outer] : fillet_outer) {
+      const std::uint64_t bit = 1ULL << outer;
+      if (!(term.outside >> torus & 1) || ((term.inside | term.outside) & bit)) continue;
+      int covered = 0, beyond = 0;
+      for (size_t s = 0; s < offset_samples; ++s)
+        if (sin[s] && (signs[s] & term.inside) == term.inside && !(signs[s] & term.outside)) {
+          ++covered;
+          beyond += !(signs[s] & bit);
+        }
+      if (beyond > 0.01 * covered) continue;
+      term.inside |= bit;
+      tightened = true;
+    }
+  if (tightened) m = build_tree(sep);
   out.expression = CsgExpressionText(sep.terms, names);
   for (int k = K; k < static_cast<int>(lit.size()); ++k) {
     bool used = false;
     for (const CsgTerm& term : sep.terms) used = used || ((term.inside | term.outside) >> k & 1);
     if (!used) continue;
+    if (literal_kind[k] == 3) {
+      const CylinderLiteral& c = literal_cylinder.at(k);
+      out.separator_cylinders.push_back({names[k], c.point, c.axis, c.radius});
+      continue;
+    }
     (literal_kind[k] == 1 ? out.separators : out.closures)
         .push_back({names[k], literal_plane[k].normal, literal_plane[k].offset});
   }

@@ -12,7 +12,9 @@
 //      every bounded term has a positive literal). While a cell of the arrangement holds many
 //      inside and many outside samples, a separating plane is added (fit/solid_bounding.h); when
 //      the solid is still unbounded (an open scan), the closure box's faces are added and the
-//      solid declared inside it; the closure faces used are reported as not measured;
+//      solid declared inside it; the closure faces used are reported as not measured; a concave
+//      fillet (a torus that is a hole) adds the planes and coaxial cylinders that bound its
+//      points (fit/fillet_separators.h);
 //   4. blends: an operator is made smooth (Li & Phillips, order 3) when enough points fit
 //      neither primitive but lie in its crease region: the two most active children w_a, w_b
 //      (subtrahends negated) are in [-R, tau] (R = max_fillet of the diagonal) and the normal
@@ -52,6 +54,9 @@ struct SolidReconstructionOptions {
   double offset = 0.01;     // t of the inside/outside samples, fraction of the diagonal
   // Shorten t where another surface lies within t along the normal (fit/offset_samples.h).
   bool adaptive_offset = true;
+  // A torus that is a hole (a concave fillet) brings the box of revolution of its points as
+  // separators (fit/fillet_separators.h).
+  bool fillet_separators = true;
   int min_transition_points = 20;          // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
@@ -82,6 +87,14 @@ struct AddedPlane {
   double offset = 0.0;
 };
 
+// A coaxial cylinder the reconstruction added as a separator (a concave fillet's bound,
+// fit/fillet_separators.h): f = |(x - point) x axis| - radius.
+struct AddedCylinder {
+  std::string name;  // "separator_cylinder0", ...
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
+  double radius = 0.0;
+};
+
 struct SolidReconstruction {
   bool success = false;
   std::string message;
@@ -99,6 +112,7 @@ struct SolidReconstruction {
   // Planes in the expression that no data lie on: separators split cells of the arrangement;
   // closures close the solid where the scan has no data (their faces are not measured).
   std::vector<AddedPlane> separators, closures;
+  std::vector<AddedCylinder> separator_cylinders;
   double seconds = 0.0;
   double fit_seconds = 0.0;  // of which the joint refinement (step 5)
   int fit_iterations = 0;
