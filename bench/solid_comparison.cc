@@ -501,6 +501,11 @@ void RunCase(const Case& c, unsigned seed) {
                  "%s: %s, %zu primitives, %zu blends, %.1f s (tree fit %.1f s, %d iterations)\n",
                  c.name.c_str(), r.expression.c_str(), primitives, r.blends.size(), r.seconds,
                  r.fit_seconds, r.fit_iterations);
+    std::string sides;  // per primitive: s(olid), h(ole), u(nused)
+    for (const std::string& side : r.sides) sides += side.empty() ? '?' : side[0];
+    std::fprintf(stderr, "%s: sides %s, normal agreement %.4f of %d inliers (sigma %.3g), %s\n",
+                 c.name.c_str(), sides.c_str(), r.normal_agreement, r.inliers, r.sigma,
+                 r.message.c_str());
     if (f.ok)  // where implicitfit's largest deviation is (stderr, for the analysis)
       std::fprintf(
           stderr, "%s: Hausdorff distance at (%.6g, %.6g, %.6g), %s\n", c.name.c_str(), f.worst.x(),

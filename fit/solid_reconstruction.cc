@@ -86,9 +86,10 @@ bool FixPrimitivesOutsideBlends(Model* m) {
 }
 
 // What the tree fitter reports, for a model with nothing left to fit: first-order distances
-// d_i = f / |grad f|, sigma = 1.4826 median |d_i|, RMS of the inliers |d_i| < 3 sigma.
+// d_i = f / |grad f|, sigma = 1.4826 median |d_i|, RMS of the inliers |d_i| < max(3 sigma,
+// floor) (noise-free clouds: most points on planes have d_i = 0, and so has sigma).
 TreeFitResult UnfittedTreeFigures(const Model& m, const std::vector<Vec>& points,
-                                  const std::vector<Vec>& normals) {
+                                  const std::vector<Vec>& normals, double floor) {
   TreeFitResult r;
   r.model = m;
   std::vector<double> d(points.size());
@@ -100,7 +101,7 @@ TreeFitResult UnfittedTreeFigures(const Model& m, const std::vector<Vec>& points
   r.sigma = 1.4826 * Median(d);
   double ss = 0, angles = 0;
   for (size_t i = 0; i < points.size(); ++i) {
-    if (!(d[i] < 3 * r.sigma)) continue;
+    if (!(d[i] < std::max(3 * r.sigma, floor))) continue;
     ++r.inliers;
     ss += d[i] * d[i];
     const Vec g = m.Gradient(points[i]).normalized();
@@ -361,7 +362,12 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
           cell_in.push_back(s < offset_samples && sin[s]);
         }
       const StumpSplit split = BestStump(cell_x, cell_in, directions);
-      if (!split.found || split.errors > 0.5 * worst_minority) break;
+      // Accepted when it removes at least max(min_conflict, 10%) of the misclassified samples: a
+      // cell may need several cuts, none of them alone halving its minority (Fit4CAD PC131: the
+      // slab's centre and the space beyond its four rounded sides, one plane per side).
+      if (!split.found ||
+          worst_minority - split.errors < std::max<double>(min_conflict, 0.1 * worst_minority))
+        break;
       add_plane_literal(split.plane, 1);
     }
     m = build_tree(sep);
@@ -519,7 +525,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   // nothing is refitted.
   TreeFitResult fit = FixPrimitivesOutsideBlends(&m)
                           ? FitModelTree(m, near_points, near_normals, options.tree)
-                          : UnfittedTreeFigures(m, near_points, near_normals);
+                          : UnfittedTreeFigures(m, near_points, near_normals, 1e-6 * diag);
   out.fit_seconds = fit.seconds;
   out.fit_iterations = fit.iterations;
   if (!fit.success) {
@@ -534,7 +540,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   for (size_t i = 0; i < near_points.size(); ++i) {
     double f;
     const Vec g = out.model.Gradient(near_points[i], &f);
-    if (!(std::abs(f) / g.norm() < 3 * fit.sigma)) continue;
+    if (!(std::abs(f) / g.norm() < std::max(3 * fit.sigma, 1e-6 * diag))) continue;
     inlier_points.push_back(near_points[i]);
     agree += g.dot(near_normals[i]) > 0;
   }
