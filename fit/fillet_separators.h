@@ -1,4 +1,5 @@
-// Separators of a concave fillet for the separation of `reconstruct` (fit/csg_separation.h).
+// Separators of a fillet (concave, and since PC155 convex: below) for the separation of
+// `reconstruct` (fit/csg_separation.h).
 //
 // A concave fillet is a torus that is a hole (its points' normals point into the tube): the
 // material is outside the tube, in the corner between the two faces it joins (Fit4CAD PC124:
@@ -37,6 +38,19 @@ struct FilletBounds {
 // The box of revolution of the points about the torus's axis (header); false when `torus` is
 // not a one-node torus or there are fewer than 3 points.
 bool FilletBoundsOf(const Model& torus, const std::vector<Eigen::Vector3d>& points, double margin,
+                    FilletBounds* bounds);
+
+// A convex fillet (a torus that is solid, a rounded edge: Fit4CAD PC155's slab rim) is joined
+// tangentially by its faces, so near the contact circles the face points lie within the
+// tolerance of the torus too and some are assigned to it: their (h, rho) overshoot the contact
+// circle (a plane tangent at rho = R gains points down to rho = R - 0.08 in a 0.2% noise test),
+// and the body under the face loses that ring. Here each point is replaced by the foot on the
+// tube that its normal gives: rho = R + r w_rho, h = r w_h, w = the normal in the meridian
+// plane, signed away from the centre circle; a face point (normal along the face's normal)
+// maps onto the contact circle itself. Points whose normal leaves the meridian plane (its
+// projection shorter than 0.5) are skipped; false when fewer than 3 remain.
+bool FilletBoundsOf(const Model& torus, const std::vector<Eigen::Vector3d>& points,
+                    const std::vector<Eigen::Vector3d>& normals, double margin,
                     FilletBounds* bounds);
 
 }  // namespace implicitfit

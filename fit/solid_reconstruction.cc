@@ -254,17 +254,23 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     literal_plane.push_back(plane);
     set_literal_bits(k);
   };
-  // Concave fillets (tori that are holes): the box of revolution of their points
-  // (fit/fillet_separators.h): two planes (separators) and two coaxial cylinders (kind 3).
+  // Fillets (tori; holes are concave fillets, solids convex ones): the box of revolution of their
+  // points (fit/fillet_separators.h): two planes (separators) and two coaxial cylinders (kind 3).
   std::map<int, CylinderLiteral> literal_cylinder;
   std::vector<std::pair<int, int>> fillet_outer;  // (hole torus, its outer cylinder) literals
   for (int k = 0; k < K; ++k) {
-    if (!options.fillet_separators || out.sides[k] != "hole" || lit.size() + 4 > 58) continue;
-    std::vector<Vec> on_torus;
+    if (!options.fillet_separators || out.sides[k] == "unused" || lit.size() + 4 > 58) continue;
+    std::vector<Vec> on_torus, their_normals;
     for (size_t i = 0; i < N; ++i)
-      if (label[i] == k) on_torus.push_back(points[i]);
+      if (label[i] == k) {
+        on_torus.push_back(points[i]);
+        their_normals.push_back(normals[i]);
+      }
     FilletBounds bounds;
-    if (!FilletBoundsOf(prim[k], on_torus, t / 8, &bounds)) continue;
+    const bool found = out.sides[k] == "hole"
+                           ? FilletBoundsOf(prim[k], on_torus, t / 8, &bounds)
+                           : FilletBoundsOf(prim[k], on_torus, their_normals, t / 8, &bounds);
+    if (!found) continue;
     add_plane_literal(bounds.low, 1);
     add_plane_literal(bounds.high, 1);
     for (const bool outer : {false, true}) {

@@ -12,9 +12,9 @@
 //      every bounded term has a positive literal). While a cell of the arrangement holds many
 //      inside and many outside samples, a separating plane is added (fit/solid_bounding.h); when
 //      the solid is still unbounded (an open scan), the closure box's faces are added and the
-//      solid declared inside it; the closure faces used are reported as not measured; a concave
-//      fillet (a torus that is a hole) adds the planes and coaxial cylinders that bound its
-//      points (fit/fillet_separators.h);
+//      solid declared inside it; the closure faces used are reported as not measured; a fillet
+//      (a torus, hole or solid) adds the planes and coaxial cylinders that bound its points
+//      (fit/fillet_separators.h);
 //   4. blends: an operator is made smooth (Li & Phillips, order 3) when enough points fit
 //      neither primitive but lie in its crease region: the two most active children w_a, w_b
 //      (subtrahends negated) are in [-R, tau] (R = max_fillet of the diagonal) and the normal
@@ -54,8 +54,8 @@ struct SolidReconstructionOptions {
   double offset = 0.01;     // t of the inside/outside samples, fraction of the diagonal
   // Shorten t where another surface lies within t along the normal (fit/offset_samples.h).
   bool adaptive_offset = true;
-  // A torus that is a hole (a concave fillet) brings the box of revolution of its points as
-  // separators (fit/fillet_separators.h).
+  // A torus (a hole: concave fillet; solid: convex fillet) brings the box of revolution of its
+  // points as separators (fit/fillet_separators.h).
   bool fillet_separators = true;
   int min_transition_points = 20;          // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud

@@ -14,6 +14,7 @@
 
 #include "datasets/model_sampler.h"
 #include "fit/solid_reconstruction.h"
+#include "support/largest_truth_distance.h"
 
 namespace implicitfit {
 namespace {
@@ -92,15 +93,6 @@ TEST(ConcaveFillet, StemOnSlab) {
   clean.noise = 0;
   clean.seed = 32;
   const std::vector<Vec> truth_points = SampleModel(truth, clean).cloud.points;
-  auto largest_distance = [&](const Model& m) {
-    double largest = 0;
-    for (const Vec& x : truth_points) {
-      double f;
-      const Vec g = m.Gradient(x, &f);
-      largest = std::max(largest, std::abs(f) / g.norm());
-    }
-    return largest;
-  };
   struct Variant {
     const char* name;
     bool adaptive, separators;
@@ -115,7 +107,7 @@ TEST(ConcaveFillet, StemOnSlab) {
     const SolidReconstruction r =
         ReconstructSolid(sampled.cloud.points, sampled.cloud.normals, scene, options);
     ASSERT_TRUE(r.success) << v.name << ": " << r.message << " expression " << r.expression;
-    const double largest = largest_distance(r.model);
+    const double largest = LargestTruthDistance(r.model, truth_points);
     std::printf("  %s: expression %s, largest distance of the truth points %.5f (3 sigma %.4f)\n",
                 v.name, r.expression.c_str(), largest, 3 * sigma);
     if (v.adaptive && v.separators) {
