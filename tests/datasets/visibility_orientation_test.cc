@@ -1,6 +1,7 @@
 // The visibility vote (datasets/visibility_orientation.h) against exact outward normals, on the
 // trap of Fit4CAD train_PC155: a dome on a slab whose top face is also sampled under the dome,
-// where it is inside the solid. MST propagation alone inverts the dome on most seeds.
+// where it is inside the solid. MST propagation alone inverts the dome on some seeds (seed 1
+// here: boundary 0.718, dome 0.016).
 #include "datasets/visibility_orientation.h"
 
 #include <gtest/gtest.h>
