@@ -46,6 +46,14 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
                         {"offset", p.offset},
                         {"measured", false}});
   }
+  // Coaxial cylinders bounding a concave fillet (fit/fillet_separators.h).
+  j["separator_cylinders"] = nlohmann::json::array();
+  for (const AddedCylinder& c : r.separator_cylinders)
+    j["separator_cylinders"].push_back({{"name", c.name},
+                                        {"point", {c.point.x(), c.point.y(), c.point.z()}},
+                                        {"axis", {c.axis.x(), c.axis.y(), c.axis.z()}},
+                                        {"radius", c.radius},
+                                        {"measured", false}});
   j["blends"] = nlohmann::json::array();
   for (const BlendEstimate& b : r.blends)
     j["blends"].push_back(

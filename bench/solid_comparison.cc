@@ -6,8 +6,8 @@
 //     normal grad f / |grad f|); truth samples: noise-free samples of it;
 //   the Fit4CAD parts (../shared/data/fit4cad, GPL-3, read only; no normals: estimated and
 //     oriented by datasets/normal_estimation.h); truth: each labelled point's ground-truth
-//     equation (planes and quadrics; tori, whose 35 coefficients are in an unchecked order: the
-//     tangent plane of the labelled point's estimated normal);
+//     surface (planes and quadrics: the implicit equation; tori: the exact torus distance, the
+//     torus read from the parametric file by datasets/fit4cad_torus.h);
 //   CGAL's box-on-ground scan (exact outward normals, no labels); truth: the tangent plane of
 //     each point (its faces are planar).
 //   For the real clouds, the distance of x to the truth is the least, over its 16 nearest truth
@@ -30,7 +30,8 @@
 // + meshing; Poisson: its reconstruction). The last columns give implicitfit / the best Poisson
 // figure.
 //   build/bench/solid_comparison [--points 20000] [--outliers 0] [--seed 1] [--only NAME]
-//                                [--cells 256]
+//                                [--cells 256] [--fit-iterations n] [--no-poisson 1]
+//                                [--fixed-offset 1]
 // stderr: each implicitfit expression and where its Hausdorff distance is reached.
 #include <pcl/PolygonMesh.h>
 #include <pcl/conversions.h>
@@ -57,6 +58,7 @@
 #include "bench/cgal_poisson.h"
 #endif
 #include "datasets/cloud_file.h"
+#include "datasets/fit4cad_torus.h"
 #include "datasets/generated_solids.h"
 #include "datasets/ground_truth.h"
 #include "datasets/model_mesher.h"
@@ -369,6 +371,21 @@ bool Fit4CadCase(const std::string& data, const std::string& part, unsigned seed
   const std::vector<implicitfit::NodeType> kinds = implicitfit::ReadFit4CadKinds(implicit_path);
   const std::vector<std::vector<double>> coefficients =
       implicitfit::ReadFit4CadCoefficients(implicit_path);
+  // Tori: the exact distance to the torus of the parametric file (its implicit coefficients are
+  // in an undocumented order).
+  const std::string parametric_path =
+      data + "/fit4cad/fit4cad_" + part + "/" + part + "_parametric.txt";
+  std::vector<std::function<double(const Vec&, Vec*)>> torus_surface(kinds.size());
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    if (kinds[k] != implicitfit::NodeType::kTorus) continue;
+    const implicitfit::Model torus = implicitfit::Fit4CadTorusFromParametric(
+        implicitfit::ReadFit4CadCoefficients(parametric_path).at(k));
+    torus_surface[k] = [torus](const Vec& x, Vec* g) {
+      double f;
+      *g = torus.Gradient(x, &f).normalized();
+      return f;
+    };
+  }
   c->name = "Fit4CAD " + part;
   c->points = cloud.points;
   c->normals = cloud.normals;
@@ -382,7 +399,8 @@ bool Fit4CadCase(const std::string& data, const std::string& part, unsigned seed
     truth->normals.push_back(cloud.normals[i]);
     truth->surface.push_back(coefficients[k].size() == 4 || coefficients[k].size() == 10
                                  ? Fit4CadSurface(coefficients[k])
-                                 : TangentPlane(cloud.points[i], cloud.normals[i]));
+                             : torus_surface[k] ? torus_surface[k]
+                                                : TangentPlane(cloud.points[i], cloud.normals[i]));
   }
   truth->Build();
   c->truth = [truth](const Vec& x, Vec* n) { return truth->Distance(x, n); };
@@ -419,7 +437,10 @@ bool CgalBoxCase(const std::string& data, Case* c, std::string* why) {
   return true;
 }
 
-int g_cells = 256;  // cells of implicitfit's mesh on the longest side (--cells)
+int g_cells = 256;         // cells of implicitfit's mesh on the longest side (--cells)
+int g_fit_iterations = 0;  // --fit-iterations: the tree fitter's iterations per pass (0: default)
+bool g_poisson = true;     // --no-poisson: implicitfit's row only
+bool g_adaptive = true;    // --fixed-offset 1: the inside/outside samples at the fixed offset
 
 void RunCase(const Case& c, unsigned seed) {
   // implicitfit: reconstruct (from the labelled scene, or detect), mesh at g_cells cells.
@@ -439,6 +460,8 @@ void RunCase(const Case& c, unsigned seed) {
     } else {
       implicitfit::SolidReconstructionOptions ro;
       ro.seed = seed;
+      if (g_fit_iterations > 0) ro.tree.max_iterations = g_fit_iterations;
+      ro.adaptive_offset = g_adaptive;
       r = implicitfit::ReconstructSolid(c.points, c.normals, c.primitives, ro);
     }
     if (r.success) {
@@ -474,8 +497,15 @@ void RunCase(const Case& c, unsigned seed) {
       method += " (" + r.message + ")";
       f.seconds = Seconds(t0);
     }
-    std::fprintf(stderr, "%s: %s, %zu primitives\n", c.name.c_str(), r.expression.c_str(),
-                 primitives);
+    std::fprintf(stderr,
+                 "%s: %s, %zu primitives, %zu blends, %.1f s (tree fit %.1f s, %d iterations)\n",
+                 c.name.c_str(), r.expression.c_str(), primitives, r.blends.size(), r.seconds,
+                 r.fit_seconds, r.fit_iterations);
+    std::string sides;  // per primitive: s(olid), h(ole), u(nused)
+    for (const std::string& side : r.sides) sides += side.empty() ? '?' : side[0];
+    std::fprintf(stderr, "%s: sides %s, normal agreement %.4f of %d inliers (sigma %.3g), %s\n",
+                 c.name.c_str(), sides.c_str(), r.normal_agreement, r.inliers, r.sigma,
+                 r.message.c_str());
     if (f.ok)  // where implicitfit's largest deviation is (stderr, for the analysis)
       std::fprintf(
           stderr, "%s: Hausdorff distance at (%.6g, %.6g, %.6g), %s\n", c.name.c_str(), f.worst.x(),
@@ -487,6 +517,11 @@ void RunCase(const Case& c, unsigned seed) {
   }
 
   std::vector<std::pair<std::string, Figures>> poisson;
+  if (!g_poisson) {
+    Figures none;
+    Row(c.name, method, f, c.size, &none);
+    return;
+  }
   pcl::PointCloud<pcl::PointNormal>::Ptr pc(new pcl::PointCloud<pcl::PointNormal>);
   for (size_t i = 0; i < c.points.size(); ++i) {
     pcl::PointNormal p;
@@ -545,6 +580,12 @@ int main(int argc, char** argv) {
       g_cells = std::max(8, std::atoi(argv[i + 1]));
     else if (!std::strcmp(argv[i], "--only"))
       only = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--fit-iterations"))
+      g_fit_iterations = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--no-poisson") && !std::strcmp(argv[i + 1], "1"))
+      g_poisson = false;
+    else if (!std::strcmp(argv[i], "--fixed-offset") && !std::strcmp(argv[i + 1], "1"))
+      g_adaptive = false;
   }
   std::printf(
       "| cloud | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight "

@@ -4,13 +4,15 @@
 #include <stdexcept>
 
 #include "datasets/normal_orientation.h"
+#include "datasets/visibility_orientation.h"
 
 namespace implicitfit {
 namespace {
 
-Eigen::Vector3d PcaNormal(const std::vector<Eigen::Vector3d>& points, size_t i,
-                          const std::vector<int>& nb) {
-  // Centre on p_i first (cancels large coordinates), then the covariance about the mean.
+// Covariance of p_i and its neighbours, centred on p_i first (cancels large coordinates), then
+// about the mean.
+Eigen::Matrix3d LocalCovariance(const std::vector<Eigen::Vector3d>& points, size_t i,
+                                const std::vector<int>& nb) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int j : nb) mean += points[j] - points[i];
   mean /= static_cast<double>(nb.size() + 1);
@@ -19,7 +21,12 @@ Eigen::Vector3d PcaNormal(const std::vector<Eigen::Vector3d>& points, size_t i,
     const Eigen::Vector3d d = points[j] - points[i] - mean;
     cov += d * d.transpose();
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+  return cov;
+}
+
+Eigen::Vector3d PcaNormal(const std::vector<Eigen::Vector3d>& points, size_t i,
+                          const std::vector<int>& nb) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(LocalCovariance(points, i, nb));
   return solver.eigenvectors().col(0).normalized();  // eigenvalues ascend
 }
 
@@ -37,6 +44,19 @@ std::vector<Eigen::Vector3d> EstimatePcaNormals(const std::vector<Eigen::Vector3
   for (size_t i = 0; i < points.size(); ++i)
     normals[i] = PcaNormal(points, i, neighbourhoods.indices[i]);
   return normals;
+}
+
+std::vector<double> SurfaceVariation(const std::vector<Eigen::Vector3d>& points,
+                                     const Neighbourhoods& neighbourhoods) {
+  std::vector<double> variation(points.size(), 0.0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(
+        LocalCovariance(points, i, neighbourhoods.indices[i]), Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d l = solver.eigenvalues().cwiseMax(0.0);
+    const double sum = l.sum();
+    variation[i] = sum > 0 ? l(0) / sum : 0.0;
+  }
+  return variation;
 }
 
 NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& options) {
@@ -68,6 +88,13 @@ NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& optio
         prefix + (estimate ? "oriented toward viewpoint" : "re-oriented toward viewpoint");
   } else {
     result.flipped = OrientByMinimumSpanningTree(cloud->points, nb.indices, &cloud->normals);
+    if (options.visibility_vote) {
+      const VisibilityOrientationResult vote =
+          OrientPatchesByVisibility(cloud->points, nb.indices, nb.spacing,
+                                    SurfaceVariation(cloud->points, nb), &cloud->normals);
+      result.visibility_flipped_patches = vote.flipped_patches;
+      result.flipped += vote.flipped;  // may count a point twice (MST and vote): an upper bound
+    }
     result.action = prefix + (estimate ? "MST-oriented" : "MST-re-oriented");
   }
   return result;

@@ -24,11 +24,13 @@ namespace {
 
 constexpr size_t kMstNeighbours = 8;
 
+}  // namespace
+
 // Agreement of n_j with n_i mirrored across the plane halfway between p_i and p_j (König &
 // Gumhold 2009): the mirror image of n_i is exactly n_j for two points of a sphere, and for
 // the two sides of a symmetric crease or of a thin sheet, where the plain n_i . n_j misleads.
-double Agreement(const std::vector<Eigen::Vector3d>& points,
-                 const std::vector<Eigen::Vector3d>& normals, int i, int j) {
+double MirroredAgreement(const std::vector<Eigen::Vector3d>& points,
+                         const std::vector<Eigen::Vector3d>& normals, int i, int j) {
   const Eigen::Vector3d e = points[j] - points[i];
   const double length = e.norm();
   if (length == 0.0) return normals[i].dot(normals[j]);
@@ -37,22 +39,55 @@ double Agreement(const std::vector<Eigen::Vector3d>& points,
   return mirrored.dot(normals[j]);
 }
 
-}  // namespace
-
-// Prim's algorithm with a binary heap, written out (~30 lines) rather than pulling in
-// Boost.Graph: the graph is the neighbour lists as they are, made symmetric here.
-size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
-                                   const std::vector<std::vector<int>>& neighbours,
-                                   std::vector<Eigen::Vector3d>* normals) {
-  const size_t n = points.size();
-  std::vector<Eigen::Vector3d>& nrm = *normals;
-  std::vector<std::vector<int>> graph(n);
-  for (size_t i = 0; i < n; ++i)
+std::vector<std::vector<int>> SymmetricNeighbourGraph(
+    const std::vector<std::vector<int>>& neighbours) {
+  std::vector<std::vector<int>> graph(neighbours.size());
+  for (size_t i = 0; i < neighbours.size(); ++i)
     for (size_t k = 0; k < neighbours[i].size() && k < kMstNeighbours; ++k) {
       const int j = neighbours[i][k];
       graph[i].push_back(j);
       graph[j].push_back(static_cast<int>(i));
     }
+  return graph;
+}
+
+// Prim's algorithm with a binary heap, written out (~20 lines) rather than pulling in
+// Boost.Graph: the graph is the neighbour lists as they are, made symmetric.
+size_t PropagateOrientation(const std::vector<Eigen::Vector3d>& points,
+                            const std::vector<std::vector<int>>& graph,
+                            const std::vector<int>& seeds, std::vector<char>* visited,
+                            std::vector<Eigen::Vector3d>* normals) {
+  std::vector<char>& done = *visited;
+  std::vector<Eigen::Vector3d>& nrm = *normals;
+  size_t flipped = 0;
+  using Item = std::pair<double, std::pair<int, int>>;  // cost, (vertex, parent)
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  auto reach_from = [&](int v) {
+    for (int w : graph[v])
+      if (!done[w]) heap.push({1.0 - std::abs(MirroredAgreement(points, nrm, v, w)), {w, v}});
+  };
+  for (int seed : seeds) done[seed] = 1;
+  for (int seed : seeds) reach_from(seed);
+  while (!heap.empty()) {
+    const auto [v, parent] = heap.top().second;
+    heap.pop();
+    if (done[v]) continue;
+    done[v] = 1;
+    if (MirroredAgreement(points, nrm, parent, v) < 0) {
+      nrm[v] = -nrm[v];
+      ++flipped;
+    }
+    reach_from(v);
+  }
+  return flipped;
+}
+
+size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
+                                   const std::vector<std::vector<int>>& neighbours,
+                                   std::vector<Eigen::Vector3d>* normals) {
+  const size_t n = points.size();
+  std::vector<Eigen::Vector3d>& nrm = *normals;
+  const std::vector<std::vector<int>> graph = SymmetricNeighbourGraph(neighbours);
   // Seeds in decreasing x: the first unvisited one is the max-x point of its component.
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -61,27 +96,13 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
 
   std::vector<char> done(n, 0);
   size_t flipped = 0;
-  using Item = std::pair<double, std::pair<int, int>>;  // cost, (vertex, parent)
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   for (int seed : order) {
     if (done[seed]) continue;
     if (nrm[seed].x() < 0) {
       nrm[seed] = -nrm[seed];
       ++flipped;
     }
-    heap.push({0.0, {seed, seed}});
-    while (!heap.empty()) {
-      const auto [v, parent] = heap.top().second;
-      heap.pop();
-      if (done[v]) continue;
-      done[v] = 1;
-      if (v != parent && Agreement(points, nrm, parent, v) < 0) {
-        nrm[v] = -nrm[v];
-        ++flipped;
-      }
-      for (int w : graph[v])
-        if (!done[w]) heap.push({1.0 - std::abs(Agreement(points, nrm, v, w)), {w, v}});
-    }
+    flipped += PropagateOrientation(points, graph, {seed}, &done, normals);
   }
   return flipped;
 }

@@ -36,6 +36,23 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
                                    const std::vector<std::vector<int>>& neighbours,
                                    std::vector<Eigen::Vector3d>* normals);
 
+// The MST's agreement a_ij = (M n_i) . n_j, M the reflection across the plane bisecting p_i p_j
+// (n_i . n_j when the points coincide).
+double MirroredAgreement(const std::vector<Eigen::Vector3d>& points,
+                         const std::vector<Eigen::Vector3d>& normals, int i, int j);
+
+// The MST's graph: each point joined to its first 8 neighbours, made symmetric.
+std::vector<std::vector<int>> SymmetricNeighbourGraph(
+    const std::vector<std::vector<int>>& neighbours);
+
+// The MST's propagation on its own: the seeds keep their signs and are marked visited, then
+// Prim's tree grows from all of them at once into the unvisited points (marking them), each
+// reached normal flipped when its agreement with its tree parent is negative.
+size_t PropagateOrientation(const std::vector<Eigen::Vector3d>& points,
+                            const std::vector<std::vector<int>>& graph,
+                            const std::vector<int>& seeds, std::vector<char>* visited,
+                            std::vector<Eigen::Vector3d>* normals);
+
 double OpposedNeighbourFraction(const std::vector<Eigen::Vector3d>& normals,
                                 const std::vector<std::vector<int>>& neighbours);
 

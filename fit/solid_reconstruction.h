@@ -4,14 +4,17 @@
 //   2. orientation: a primitive is material-inside when most of its points' normals agree in
 //      sign with grad f_k, a hole otherwise (a bore: the cylinder is subtracted); planes are
 //      flipped so that f < 0 is their material side;
-//   3. the Boolean expression: samples p -+ t n (t = 1% of the diagonal) of the assigned points
-//      are inside / outside, points on a box 10% larger than the cloud's are outside;
+//   3. the Boolean expression: samples p -+ t n (t = 1% of the diagonal, shortened to half the
+//      distance to the next surface along the normal: fit/offset_samples.h) of the assigned
+//      points are inside / outside, points on a box 10% larger than the cloud's are outside;
 //      fit/csg_separation.h turns them into a union of terms, each term
 //      difference(intersection(positive literals), negative literals) (no complement node needed:
 //      every bounded term has a positive literal). While a cell of the arrangement holds many
 //      inside and many outside samples, a separating plane is added (fit/solid_bounding.h); when
 //      the solid is still unbounded (an open scan), the closure box's faces are added and the
-//      solid declared inside it; the closure faces used are reported as not measured;
+//      solid declared inside it; the closure faces used are reported as not measured; a fillet
+//      (a torus, hole or solid) adds the planes and coaxial cylinders that bound its points
+//      (fit/fillet_separators.h);
 //   4. blends: an operator is made smooth (Li & Phillips, order 3) when enough points fit
 //      neither primitive but lie in its crease region: the two most active children w_a, w_b
 //      (subtrahends negated) are in [-R, tau] (R = max_fillet of the diagonal) and the normal
@@ -20,7 +23,11 @@
 //      delta) + delta / 2 = 0 in its parabolic zone; epsilon at 0.6 delta. Other operators are
 //      sharp (order 0, delta and epsilon fixed);
 //   5. every free parameter is refined with the tree fitter (fit/tree_fitter.h) on the points
-//      within R of the initial model; standard deviations from fit/tree_covariance.h.
+//      within R of the initial model; standard deviations from fit/tree_covariance.h. Only the
+//      smooth operators and the primitives below them are free: a primitive under sharp
+//      operators only keeps the primitive fitter's parameters (a point's residual there depends
+//      on that primitive alone, which was fitted to its own points), and a tree without a blend
+//      is not refitted (the fit over a whole tree of 18 primitives took hours on Fit4CAD PC131).
 // The implied fillet radius of a blend: on the bisector of two faces whose outward normals make
 // the angle phi, the blended zero set sits at distance delta / 4 from both faces (a = b:
 // 2a + delta / 2 = 0); a circular fillet of radius rho tangent to both has its arc there when
@@ -43,9 +50,14 @@ struct SolidPrimitive {
 };
 
 struct SolidReconstructionOptions {
-  double max_fillet = 0.1;         // R: largest fillet considered, fraction of the diagonal
-  double offset = 0.01;            // t of the inside/outside samples, fraction of the diagonal
-  int min_transition_points = 20;  // a blend needs at least this many transition points
+  double max_fillet = 0.1;  // R: largest fillet considered, fraction of the diagonal
+  double offset = 0.01;     // t of the inside/outside samples, fraction of the diagonal
+  // Shorten t where another surface lies within t along the normal (fit/offset_samples.h).
+  bool adaptive_offset = true;
+  // A torus (a hole: concave fillet; solid: convex fillet) brings the box of revolution of its
+  // points as separators (fit/fillet_separators.h).
+  bool fillet_separators = true;
+  int min_transition_points = 20;          // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
   int max_samples = 20000;  // inside/outside samples drawn from the assigned points
@@ -75,6 +87,14 @@ struct AddedPlane {
   double offset = 0.0;
 };
 
+// A coaxial cylinder the reconstruction added as a separator (a concave fillet's bound,
+// fit/fillet_separators.h): f = |(x - point) x axis| - radius.
+struct AddedCylinder {
+  std::string name;  // "separator_cylinder0", ...
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
+  double radius = 0.0;
+};
+
 struct SolidReconstruction {
   bool success = false;
   std::string message;
@@ -92,7 +112,10 @@ struct SolidReconstruction {
   // Planes in the expression that no data lie on: separators split cells of the arrangement;
   // closures close the solid where the scan has no data (their faces are not measured).
   std::vector<AddedPlane> separators, closures;
+  std::vector<AddedCylinder> separator_cylinders;
   double seconds = 0.0;
+  double fit_seconds = 0.0;  // of which the joint refinement (step 5)
+  int fit_iterations = 0;
 };
 
 SolidReconstruction ReconstructSolid(const std::vector<Eigen::Vector3d>& points,
