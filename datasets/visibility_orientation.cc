@@ -76,7 +76,7 @@ VisibilityOrientationResult OrientPatchesByVisibility(
   const Eigen::Vector3d centre =
       std::accumulate(points.begin(), points.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
       static_cast<double>(n);
-  std::unordered_map<int64_t, int> front;
+  std::unordered_map<uint64_t, int> front;
   front.reserve(n);
   for (const Eigen::Vector3d& d : SphereDirections(options.directions)) {
     const Eigen::Vector3d u = d.unitOrthogonal(), v = d.cross(u);
@@ -85,7 +85,9 @@ VisibilityOrientationResult OrientPatchesByVisibility(
       const Eigen::Vector3d q = points[i] - centre;
       const int64_t a = static_cast<int64_t>(std::floor(q.dot(u) / cell));
       const int64_t b = static_cast<int64_t>(std::floor(q.dot(v) / cell));
-      const int64_t key = (a << 32) ^ (b & 0xffffffff);
+      // unsigned: shifting a negative cell index is undefined (UBSan)
+      const uint64_t key =
+          (static_cast<uint64_t>(a) << 32) ^ (static_cast<uint64_t>(b) & 0xffffffffu);
       auto [it, added] = front.emplace(key, static_cast<int>(i));
       if (!added && (points[i] - centre).dot(d) < (points[it->second] - centre).dot(d))
         it->second = static_cast<int>(i);
