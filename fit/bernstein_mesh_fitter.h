@@ -75,6 +75,8 @@ struct MeshFitOptions {
   double smoothing_weight = 0.1;      // weight of the C2 rows on faces of empty tetrahedra
   double far_field_weight = 1.0;      // weight of the far-field rows (header, step 1); 0: none
   double far_field_beside_cos = 0.5;  // far-field points beside the data are outside (.cc)
+  double far_field_ramp = 0.0;        // > 0: row weight min(1, (distance / (ramp h))^power)
+  double far_field_ramp_power = 1.0;
   double box_margin = 0.1;  // grid box: cloud box + max(5%, box_margin x longest) per side
                             // (not with --convex, which keeps 5%)
   bool IsValid(std::string* error) const;
