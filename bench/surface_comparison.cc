@@ -14,8 +14,8 @@
 // (fit/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
 // side / 128; on convex inputs a second row fits with --convex and reports the certificate.
 //   build/bench/surface_comparison [--points 20000] [--seed 1] [--cells n] [--degree k]
-//                                [--scan-degree k2 (default 4; 0: no second scan row)]
-//                                [--scan-cells n2 (second scan row's cubes; default: --cells)]
+//                                [--scan-degree k2,k3,... (default 4,5; 0: no further scan row)]
+//                                [--scan-cells n2 (the further scan rows' cubes; default: --cells)]
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -175,7 +175,8 @@ void AddGenerated(const std::string& name, const implicitfit::Model& truth, bool
 }  // namespace
 
 int main(int argc, char** argv) {
-  int points = 20000, cells = 0, degree = 3, scan_degree = 4, scan_cells = -1;
+  int points = 20000, cells = 0, degree = 3, scan_cells = -1;
+  std::vector<int> scan_degrees = {4, 5};
   implicitfit::MeshFitOptions defaults;  // --far-field-ramp r, --far-field-ramp-power p
   double ramp = defaults.far_field_ramp, ramp_power = defaults.far_field_ramp_power;
   std::string only;  // run only the clouds whose name contains this
@@ -189,9 +190,16 @@ int main(int argc, char** argv) {
       cells = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--degree"))
       degree = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--scan-degree"))
-      scan_degree = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--scan-cells"))
+    else if (!std::strcmp(argv[i], "--scan-degree")) {
+      scan_degrees.clear();  // a comma-separated list; 0: none
+      for (const char* p = argv[i + 1]; *p;) {
+        char* end = nullptr;
+        const long k = std::strtol(p, &end, 10);
+        if (end == p) break;
+        if (k > 0) scan_degrees.push_back(static_cast<int>(k));
+        p = *end == ',' ? end + 1 : end;
+      }
+    } else if (!std::strcmp(argv[i], "--scan-cells"))
       scan_cells = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--far-field-ramp"))
       ramp = std::atof(argv[i + 1]);
@@ -231,17 +239,23 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     if (c.name.find(only) == std::string::npos) continue;
-    // Rows: the defaults (degree `degree`); on non-convex scans also degree `scan_degree` (issue
+    // Rows: the defaults (degree `degree`); on non-convex scans also each of `scan_degrees` (issue
     // 11: the degree is the lever that lowers the fit's RMS most at a given grid) on
     // `scan_cells` cubes; on convex inputs --convex.
-    for (int variant : {0, 1, 2}) {
-      const bool convex = variant == 2;
-      if (convex && !c.convex) continue;
-      if (variant == 1 &&
-          (!c.scan || c.convex || scan_degree <= 0 || (scan_degree == degree && scan_cells < 0)))
-        continue;
-      const int row_degree = variant == 1 ? scan_degree : degree;
-      const int row_cells = variant == 1 && scan_cells >= 0 ? scan_cells : cells;
+    struct PatchRow {
+      int degree, cells;
+      bool convex;
+    };
+    std::vector<PatchRow> rows = {{degree, cells, false}};
+    if (c.scan && !c.convex)
+      for (int k : scan_degrees) {
+        const int n = scan_cells >= 0 ? scan_cells : cells;
+        if (k != degree || n != cells) rows.push_back({k, n, false});
+      }
+    if (c.convex) rows.push_back({degree, cells, true});
+    for (const PatchRow& row : rows) {
+      const bool convex = row.convex;
+      const int row_degree = row.degree, row_cells = row.cells;
       const Outcome o = RunIsolated(c, seed, [&](Outcome* out) {
         implicitfit::MeshFitOptions fo;
         fo.degree = row_degree;

@@ -377,7 +377,8 @@ class DomainLeastSquares {
 // degrees) with n_p lies beside the data, beyond an open rim, rather than above or below it: the
 // tangent-plane sign says nothing there, and the target is +|x - p| (outside) too, so that the
 // cap of an open scan closes near its rim instead of at the box (oni: Chamfer 0.0227 -> 0.0209).
-// Nearest point by brute force (lattice x points: below 10^9 operations for the grids
+// Row weight (not on the box): min(1, (distance to the data / (ramp h))^ramp_power), see the
+// header. Nearest point by brute force (lattice x points: below 10^9 operations for the grids
 // used here; fit/ has no spatial index).
 struct FarFieldRow {
   Vec x;
@@ -645,6 +646,10 @@ bool MeshFitOptions::IsValid(std::string* error) const {
   if (!(far_field_beside_cos >= 0.0 && far_field_beside_cos < 1.0))
     return fail("far_field_beside_cos must be in [0, 1)");
   if (!(box_margin >= 0.0 && box_margin <= 10.0)) return fail("box_margin must be in [0, 10]");
+  if (!(far_field_ramp >= 0.0 && std::isfinite(far_field_ramp)))
+    return fail("far_field_ramp must be >= 0 (cubes)");
+  if (!(far_field_ramp_power > 0.0 && std::isfinite(far_field_ramp_power)))
+    return fail("far_field_ramp_power must be positive");
   return true;
 }
 
