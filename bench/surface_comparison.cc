@@ -12,7 +12,8 @@
 // (each method runs in its own forked process: VmHWM of that process after the reconstruction, the
 // parent's few MB included). Patch-mesh rows use the fitter's defaults
 // (fit/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
-// side / 128; on convex inputs a second row fits with --convex and reports the certificate.
+// side / 128; on the non-convex scans further rows fit at degrees 4 and 5 (--scan-degree), on
+// convex inputs a second row fits with --convex and reports the certificate.
 //   build/bench/surface_comparison [--points 20000] [--seed 1] [--cells n] [--degree k]
 //                                [--scan-degree k2,k3,... (default 4,5; 0: no further scan row)]
 //                                [--scan-cells n2 (the further scan rows' cubes; default: --cells)]
