@@ -180,7 +180,9 @@ Figures JudgeMesh(const TriangleMesh& mesh, const TruthSurface& truth, unsigned 
     sum_tm += best;
     max_tm = std::max(max_tm, best);
   }
-  fig.chamfer = 0.5 * (sum_mt / samples + sum_tm / truth.points.size());
+  fig.mesh_to_truth = sum_mt / samples;
+  fig.truth_to_mesh = sum_tm / truth.points.size();
+  fig.chamfer = 0.5 * (fig.mesh_to_truth + fig.truth_to_mesh);
   fig.hausdorff = std::max(max_mt, max_tm);
   fig.normal_consistency = normals / samples;
   return fig;

@@ -26,6 +26,7 @@ using Vec = Eigen::Vector3d;
 
 struct Figures {
   double chamfer = 0, hausdorff = 0, normal_consistency = 0, seconds = 0;
+  double mesh_to_truth = 0, truth_to_mesh = 0;  // the two directed means of the Chamfer distance
   long bad_edges = 0;
   size_t triangles = 0;
 };

@@ -5,15 +5,19 @@
 //   generated closed surfaces: ellipsoid (radii 1, 0.7, 0.5), torus (R 1, r 0.35), smooth union
 //          of two spheres (r 0.6 at x = -+0.4, delta 0.1); 20 000 points with noise 0.2% of
 //          their size, judged against the generating model and 20 000 noise-free points on it.
-// Figures (bench/mesh_judging.h): Chamfer and Hausdorff distance, normal consistency,
-// watertightness, triangles; patch count (implicitfit), seconds (fit + mesh; PCL: its
-// reconstruction; wall and CPU time: the machine may be shared), peak resident memory of the method
+// Figures (bench/mesh_judging.h): Chamfer distance and its two directed means, Hausdorff
+// distance, normal consistency, watertightness, triangles; patch count (implicitfit), seconds
+// (fit + mesh; PCL: its reconstruction; wall and CPU time: the machine may be shared), peak
+// resident memory of the method
 // (each method runs in its own forked process: VmHWM of that process after the reconstruction, the
 // parent's few MB included). Patch-mesh rows use the fitter's defaults
 // (fit/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
-// side / 128; on convex inputs a second row fits with --convex and reports the certificate.
+// side / 128; on the non-convex scans further rows fit at degrees 4 and 5 (--scan-degree), on
+// convex inputs a second row fits with --convex and reports the certificate.
 //   build/bench/surface_comparison [--points 20000] [--seed 1] [--cells n] [--degree k]
-//                                [--only NAME-PART]
+//                                [--scan-degree k2,k3,... (default 4,5; 0: no further scan row)]
+//                                [--scan-cells n2 (the further scan rows' cubes; default: --cells)]
+//                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -108,17 +112,19 @@ Outcome RunIsolated(const Case& c, unsigned seed,
 
 void Row(const Case& c, const std::string& method, const Outcome& o) {
   if (!o.ok) {
-    std::printf("| %s | %s | failed | | | | | | | | |\n", c.name.c_str(), method.c_str());
+    std::printf("| %s | %s | failed | | | | | | | | | |\n", c.name.c_str(), method.c_str());
     return;
   }
   const bench::Figures& f = o.figures;
   std::string patches = o.patches ? std::to_string(o.patches) : "-";
   if (o.certified >= 0) patches += o.certified ? ", certified convex" : ", not certified";
   std::printf(
-      "| %s | %s | %.5f (%.2e) | %.5f (%.2e) | %.4f | %s (%ld) | %zu | %s | %.2f | %.2f | %.0f |\n",
-      c.name.c_str(), method.c_str(), f.chamfer, f.chamfer / c.size, f.hausdorff,
-      f.hausdorff / c.size, f.normal_consistency, f.bad_edges ? "no" : "yes", f.bad_edges,
-      f.triangles, patches.c_str(), f.seconds, o.cpu_seconds, o.peak_rss_mb);
+      "| %s | %s | %.5f (%.2e) | %.5f / %.5f | %.5f (%.2e) | %.4f | %s (%ld) | %zu | %s | %.2f | "
+      "%.2f | %.0f |\n",
+      c.name.c_str(), method.c_str(), f.chamfer, f.chamfer / c.size, f.mesh_to_truth,
+      f.truth_to_mesh, f.hausdorff, f.hausdorff / c.size, f.normal_consistency,
+      f.bad_edges ? "no" : "yes", f.bad_edges, f.triangles, patches.c_str(), f.seconds,
+      o.cpu_seconds, o.peak_rss_mb);
   std::fflush(stdout);
 }
 
@@ -170,7 +176,10 @@ void AddGenerated(const std::string& name, const implicitfit::Model& truth, bool
 }  // namespace
 
 int main(int argc, char** argv) {
-  int points = 20000, cells = 0, degree = 3;
+  int points = 20000, cells = 0, degree = 3, scan_cells = -1;
+  std::vector<int> scan_degrees = {4, 5};
+  implicitfit::MeshFitOptions defaults;  // --far-field-ramp r, --far-field-ramp-power p
+  double ramp = defaults.far_field_ramp, ramp_power = defaults.far_field_ramp_power;
   std::string only;  // run only the clouds whose name contains this
   unsigned seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -182,6 +191,21 @@ int main(int argc, char** argv) {
       cells = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--degree"))
       degree = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--scan-degree")) {
+      scan_degrees.clear();  // a comma-separated list; 0: none
+      for (const char* p = argv[i + 1]; *p;) {
+        char* end = nullptr;
+        const long k = std::strtol(p, &end, 10);
+        if (end == p) break;
+        if (k > 0) scan_degrees.push_back(static_cast<int>(k));
+        p = *end == ',' ? end + 1 : end;
+      }
+    } else if (!std::strcmp(argv[i], "--scan-cells"))
+      scan_cells = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--far-field-ramp"))
+      ramp = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--far-field-ramp-power"))
+      ramp_power = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--only"))
       only = argv[i + 1];
   }
@@ -210,23 +234,36 @@ int main(int argc, char** argv) {
   }
   std::printf("parent resident memory before the methods: %.0f MB\n\n", PeakRssMb());
   std::printf(
-      "| cloud | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight "
-      "(bad edges) | triangles | patches | wall s | CPU s | peak MB |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| cloud | method | Chamfer (/ size) | mesh->truth / truth->mesh | Hausdorff (/ size) | "
+      "normal "
+      "consistency | watertight (bad edges) | triangles | patches | wall s | CPU s | peak MB |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     if (c.name.find(only) == std::string::npos) continue;
-    // Rows: the defaults (degree `degree`); on non-convex scans also degree 4 (issue 11: the degree
-    // is the lever that lowers the fit's RMS most at a given grid); on convex inputs --convex.
-    for (int variant : {0, 1, 2}) {
-      const bool convex = variant == 2;
-      if (convex && !c.convex) continue;
-      if (variant == 1 && (!c.scan || c.convex || degree == 4)) continue;
-      const int row_degree = variant == 1 ? 4 : degree;
+    // Rows: the defaults (degree `degree`); on non-convex scans also each of `scan_degrees` (issue
+    // 11: the degree is the lever that lowers the fit's RMS most at a given grid) on
+    // `scan_cells` cubes; on convex inputs --convex.
+    struct PatchRow {
+      int degree, cells;
+      bool convex;
+    };
+    std::vector<PatchRow> rows = {{degree, cells, false}};
+    if (c.scan && !c.convex)
+      for (int k : scan_degrees) {
+        const int n = scan_cells >= 0 ? scan_cells : cells;
+        if (k != degree || n != cells) rows.push_back({k, n, false});
+      }
+    if (c.convex) rows.push_back({degree, cells, true});
+    for (const PatchRow& row : rows) {
+      const bool convex = row.convex;
+      const int row_degree = row.degree, row_cells = row.cells;
       const Outcome o = RunIsolated(c, seed, [&](Outcome* out) {
         implicitfit::MeshFitOptions fo;
         fo.degree = row_degree;
-        fo.cells = cells;
+        fo.cells = row_cells;
         fo.convex = convex;
+        fo.far_field_ramp = ramp;
+        fo.far_field_ramp_power = ramp_power;
         const implicitfit::MeshFitResult r = implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
         out->patches = r.tetrahedra;
         out->fit_rms = r.rms;
@@ -242,12 +279,15 @@ int main(int argc, char** argv) {
         mo.num_threads = 2;
         return implicitfit::MeshModel(r.ToModel(), mo).mesh;
       });
-      char method[200];
+      std::string row_label;
+      if (row_degree != 3) row_label += " --degree " + std::to_string(row_degree);
+      if (row_cells > 0) row_label += " --cells " + std::to_string(row_cells);
+      char method[240];
       std::snprintf(method, sizeof method,
                     "implicitfit patch-mesh%s%s (rms %.2e, start %.2e; f <= 0 at %lld box-face "
                     "samples)",
-                    convex ? " --convex" : "", variant == 1 ? " --degree 4" : "", o.fit_rms,
-                    o.initial_rms, o.box_sign_errors);
+                    convex ? " --convex" : "", row_label.c_str(), o.fit_rms, o.initial_rms,
+                    o.box_sign_errors);
       Row(c, method, o);
     }
     for (int depth : {7, 8}) {

@@ -2,8 +2,6 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <chrono>
@@ -14,6 +12,7 @@
 
 #include "fit/continuity_projection.h"
 #include "fit/patch_fitter.h"
+#include "fit/reused_cholesky.h"
 #include "model/bernstein_conversion.h"
 #include "model/bernstein_mesh_certificate.h"
 #include "model/bernstein_mesh_continuity.h"
@@ -220,10 +219,8 @@ class DomainLeastSquares {
     double tau[4];
     const long long t = grid_.Locate(x.data(), tau);
     BasisValues(k_, tau, basis_.data());
-    for (long long j = 0; j < n_; ++j)
-      trip_.emplace_back(rows_, domain_[t * n_ + j], weight * basis_[j]);
-    rhs_.push_back(weight * target);
-    ++rows_;
+    double* row = NewRow(t, weight * target);
+    for (long long j = 0; j < n_; ++j) row[j] = weight * basis_[j];
   }
 
   // The three rows weight (grad f(x) - target); grad B_j by the patch's derivatives of unit
@@ -232,57 +229,123 @@ class DomainLeastSquares {
     double tau[4];
     const long long t = grid_.Locate(x.data(), tau);
     const Tetrahedron tet = grid_.TetrahedronOf(t);
+    for (int c = 0; c < 3; ++c) NewRow(t, weight * target[c]);
     unit_.assign(static_cast<size_t>(n_), 0.0);
     for (long long j = 0; j < n_; ++j) {
       unit_[j] = 1.0;
       Vec g;
       BernsteinPatch::Derivatives(k_, tet, unit_.data(), x.data(), &g);
       unit_[j] = 0.0;
-      for (int c = 0; c < 3; ++c) trip_.emplace_back(rows_ + c, domain_[t * n_ + j], weight * g[c]);
+      for (int c = 0; c < 3; ++c) coefficients_[(rows_ - 3 + c) * n_ + j] = weight * g[c];
     }
-    for (int c = 0; c < 3; ++c) rhs_.push_back(weight * target[c]);
-    rows_ += 3;
   }
 
   // Solves with the rows added since the last Solve (then drops them); returns b = P w.
+  // Assembly. Every row lies in one tetrahedron, so A^T A is a sum of dense n x n blocks
+  // R_t^T R_t (R_t: the rows of tetrahedron t), each computed with dense products and added
+  // into H's value array at positions found once (the rows fall in the same tetrahedra every
+  // iteration); H = those blocks + the fixed continuity and C2 part + a tiny ridge.
   std::vector<double> Solve() {
-    SparseMatrix A(static_cast<long>(rows_), nd_);
-    A.setFromTriplets(trip_.begin(), trip_.end());
-    const Eigen::Map<const Eigen::VectorXd> y(rhs_.data(), static_cast<long>(rhs_.size()));
-    SparseMatrix H = SparseMatrix(A.transpose()) * A + fixed_;
-    const Eigen::VectorXd g = A.transpose() * y;
+    std::vector<long long> order(static_cast<size_t>(rows_));
+    for (long long r = 0; r < rows_; ++r) order[r] = r;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](long long a, long long b) { return row_tet_[a] < row_tet_[b]; });
+    std::vector<long long> tets;
+    for (long long r : order)
+      if (tets.empty() || tets.back() != row_tet_[r]) tets.push_back(row_tet_[r]);
+    if (tets != pattern_tets_) BuildPattern(tets);
+    Eigen::VectorXd values = Eigen::VectorXd::Zero(H_.nonZeros());
+    for (size_t i = 0; i < fixed_positions_.size(); ++i)
+      values[fixed_positions_[i]] += fixed_.valuePtr()[i];
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(nd_);
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMajor R;
+    Eigen::VectorXd y;
+    size_t next = 0;
+    for (size_t ti = 0; ti < tets.size(); ++ti) {
+      const long long t = tets[ti];
+      size_t end = next;
+      while (end < order.size() && row_tet_[order[end]] == t) ++end;
+      R.resize(static_cast<long>(end - next), n_);
+      y.resize(static_cast<long>(end - next));
+      for (size_t i = next; i < end; ++i) {
+        R.row(static_cast<long>(i - next)) =
+            Eigen::Map<const Eigen::RowVectorXd>(&coefficients_[order[i] * n_], n_);
+        y[static_cast<long>(i - next)] = rhs_[order[i]];
+      }
+      next = end;
+      const Eigen::MatrixXd block = R.transpose() * R;
+      const Eigen::VectorXd local = R.transpose() * y;
+      const int* pos = &block_positions_[ti * n_ * n_];
+      for (long long a = 0; a < n_; ++a) {
+        g[domain_[t * n_ + a]] += local[a];
+        for (long long c = 0; c < n_; ++c) values[pos[a * n_ + c]] += block(c, a);
+      }
+    }
     // A tiny ridge keeps the system definite where nothing else reaches (far corners).
-    const double ridge = 1e-10 * std::max(1.0, H.diagonal().maxCoeff());
-    for (long long i = 0; i < nd_; ++i) H.coeffRef(i, i) += ridge;
-    Eigen::VectorXd w;
+    double largest = 1.0;
+    for (int d : diagonal_positions_) largest = std::max(largest, values[d]);
+    for (int d : diagonal_positions_) values[d] += 1e-10 * largest;
+    std::copy(values.data(), values.data() + values.size(), H_.valuePtr());
     // CHOLMOD's supernodal Cholesky (SuiteSparse, linked for the projection already) is an order
-    // of magnitude faster than Eigen's simplicial one on these 3-D grids; the latter is the
-    // fallback when the matrix is not numerically positive definite. The refinement's systems
+    // of magnitude faster than Eigen's simplicial one on these 3-D grids. The refinement's systems
     // share one sparsity pattern (the same points, offsets and far-field points every
-    // iteration), so the symbolic analysis (METIS ordering, supernodes) is done once and only
-    // the numeric factorisation is repeated.
-    H.makeCompressed();
-    const bool same_pattern = cholmod_ && H.nonZeros() == static_cast<long>(inner_.size()) &&
-                              std::equal(inner_.begin(), inner_.end(), H.innerIndexPtr()) &&
-                              std::equal(outer_.begin(), outer_.end(), H.outerIndexPtr());
-    if (!same_pattern) {
-      cholmod_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix>>();
-      cholmod_->analyzePattern(H);
-      inner_.assign(H.innerIndexPtr(), H.innerIndexPtr() + H.nonZeros());
-      outer_.assign(H.outerIndexPtr(), H.outerIndexPtr() + H.outerSize() + 1);
-    }
-    Eigen::CholmodSupernodalLLT<SparseMatrix>& cholmod = *cholmod_;
-    cholmod.factorize(H);
-    if (cholmod.info() == Eigen::Success) w = cholmod.solve(g);
-    if (cholmod.info() != Eigen::Success || !w.allFinite()) {
-      Eigen::SimplicialLDLT<SparseMatrix> ldlt(H);
-      w = ldlt.solve(g);
-    }
-    const Eigen::VectorXd b = P_ * w;
-    trip_.clear();
+    // iteration) and differ only in row weights, so the last factor preconditions conjugate
+    // gradients on the next system and a new factorisation is made only when they do not
+    // converge (fit/reused_cholesky.h).
+    last_w_ = cholmod_.Solve(H_, g, last_w_);
+    const Eigen::VectorXd b = P_ * last_w_;
+    row_tet_.clear();
+    coefficients_.clear();
     rhs_.clear();
     rows_ = 0;
     return std::vector<double>(b.data(), b.data() + b.size());
+  }
+
+ private:
+  // Appends a row in tetrahedron t with right-hand side rhs; returns its n coefficients.
+  double* NewRow(long long t, double rhs) {
+    row_tet_.push_back(t);
+    rhs_.push_back(rhs);
+    coefficients_.resize(static_cast<size_t>((rows_ + 1) * n_));
+    return &coefficients_[rows_++ * n_];
+  }
+
+  // H's pattern: the fixed part plus a dense block on the domain points of every tetrahedron
+  // that holds rows; the value positions of both and of the diagonal.
+  void BuildPattern(const std::vector<long long>& tets) {
+    std::vector<Eigen::Triplet<double>> ts;
+    ts.reserve(tets.size() * n_ * n_);
+    for (long long t : tets)
+      for (long long a = 0; a < n_; ++a)
+        for (long long c = 0; c < n_; ++c)
+          ts.emplace_back(domain_[t * n_ + c], domain_[t * n_ + a], 1.0);
+    for (long long i = 0; i < nd_; ++i) ts.emplace_back(i, i, 1.0);
+    for (int j = 0; j < fixed_.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(fixed_, j); it; ++it)
+        ts.emplace_back(it.row(), it.col(), 1.0);
+    H_.resize(nd_, nd_);
+    H_.setFromTriplets(ts.begin(), ts.end());
+    H_.makeCompressed();
+    auto position = [&](long long row, long long col) {
+      const auto* first = H_.innerIndexPtr() + H_.outerIndexPtr()[col];
+      const auto* last = H_.innerIndexPtr() + H_.outerIndexPtr()[col + 1];
+      return static_cast<int>(std::lower_bound(first, last, row) - H_.innerIndexPtr());
+    };
+    block_positions_.resize(tets.size() * n_ * n_);
+    for (size_t ti = 0; ti < tets.size(); ++ti)
+      for (long long a = 0; a < n_; ++a)
+        for (long long c = 0; c < n_; ++c)
+          block_positions_[(ti * n_ + a) * n_ + c] =
+              position(domain_[tets[ti] * n_ + c], domain_[tets[ti] * n_ + a]);
+    fixed_.makeCompressed();
+    fixed_positions_.clear();
+    for (int j = 0; j < fixed_.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(fixed_, j); it; ++it)
+        fixed_positions_.push_back(position(it.row(), it.col()));
+    diagonal_positions_.resize(static_cast<size_t>(nd_));
+    for (long long i = 0; i < nd_; ++i) diagonal_positions_[i] = position(i, i);
+    pattern_tets_ = tets;
   }
 
  private:
@@ -292,11 +355,16 @@ class DomainLeastSquares {
   std::vector<long long> domain_;
   long long nd_;
   SparseMatrix P_, fixed_;
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix>> cholmod_;  // analysed pattern
-  std::vector<SparseMatrix::StorageIndex> inner_, outer_;               // of that pattern
-  std::vector<Eigen::Triplet<double>> trip_;
-  std::vector<double> rhs_, basis_, unit_;
+  ReusedCholeskySolver cholmod_;
+  Eigen::VectorXd last_w_;  // the last solution (the next system's starting point)
+  // Rows added since the last Solve: tetrahedron, n coefficients each, right-hand side.
+  std::vector<long long> row_tet_;
+  std::vector<double> coefficients_, rhs_, basis_, unit_;
   long long rows_ = 0;
+  // H's pattern (BuildPattern) and where the blocks, the fixed part and the diagonal go in it.
+  SparseMatrix H_;
+  std::vector<long long> pattern_tets_;
+  std::vector<int> block_positions_, fixed_positions_, diagonal_positions_;
 };
 
 // Far-field rows: at the points x of a lattice of spacing h/2 farther than `band` from every
@@ -309,17 +377,19 @@ class DomainLeastSquares {
 // degrees) with n_p lies beside the data, beyond an open rim, rather than above or below it: the
 // tangent-plane sign says nothing there, and the target is +|x - p| (outside) too, so that the
 // cap of an open scan closes near its rim instead of at the box (oni: Chamfer 0.0227 -> 0.0209).
-// Nearest point by brute force (lattice x points: below 10^9 operations for the grids
+// Row weight (not on the box): min(1, (distance to the data / (ramp h))^ramp_power), see the
+// header. Nearest point by brute force (lattice x points: below 10^9 operations for the grids
 // used here; fit/ has no spatial index).
 struct FarFieldRow {
   Vec x;
   double target;
   bool on_box = false;
+  double weight = 1.0;  // relative weight (far_field_ramp)
 };
 
 std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vector<Vec>& points,
                                       const std::vector<Vec>& normals, double band,
-                                      double beside_cos) {
+                                      double beside_cos, double ramp, double ramp_power) {
   std::vector<FarFieldRow> rows;
   const int per = 2;  // samples per cube edge
   const double step = grid.cell / per;
@@ -338,7 +408,11 @@ std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vect
         const bool on_box = i == 0 || j == 0 || l == 0 || i == m[0] || j == m[1] || l == m[2];
         const double hoppe = (c - points[best]).dot(normals[best]);
         const bool beside = std::abs(hoppe) < beside_cos * std::sqrt(best_d2);
-        rows.push_back({c, on_box || beside ? std::sqrt(best_d2) : hoppe, on_box});
+        const double distance = std::sqrt(best_d2);
+        const double weight =
+            ramp > 0 && !on_box ? std::min(1.0, std::pow(distance / (ramp * grid.cell), ramp_power))
+                                : 1.0;
+        rows.push_back({c, on_box || beside ? distance : hoppe, on_box, weight});
       }
   return rows;
 }
@@ -359,7 +433,7 @@ long long FarFieldSignErrors(const BernsteinGrid& grid, int k, const std::vector
 
 void AddFarFieldRows(const std::vector<FarFieldRow>& rows, double weight,
                      DomainLeastSquares* solver) {
-  for (const FarFieldRow& r : rows) solver->AddValueRow(r.x, weight, r.target);
+  for (const FarFieldRow& r : rows) solver->AddValueRow(r.x, weight * r.weight, r.target);
 }
 
 // Step 1: f(p_i) = 0, f(p_i +- d n_i) = +-d. Returns b (not yet projected).
@@ -572,6 +646,10 @@ bool MeshFitOptions::IsValid(std::string* error) const {
   if (!(far_field_beside_cos >= 0.0 && far_field_beside_cos < 1.0))
     return fail("far_field_beside_cos must be in [0, 1)");
   if (!(box_margin >= 0.0 && box_margin <= 10.0)) return fail("box_margin must be in [0, 10]");
+  if (!(far_field_ramp >= 0.0 && std::isfinite(far_field_ramp)))
+    return fail("far_field_ramp must be >= 0 (cubes)");
+  if (!(far_field_ramp_power > 0.0 && std::isfinite(far_field_ramp_power)))
+    return fail("far_field_ramp_power must be positive");
   return true;
 }
 
@@ -635,14 +713,16 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const std::vector<bool> c2_keep = EmptyFaceRows(c2, data);
 
   DomainLeastSquares solver(grid, k, options.continuity, options, c2, c2_keep);
+  const ContinuityProjector projector(grid, k, options.continuity);
   // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
   const std::vector<FarFieldRow> far =
       options.far_field_weight > 0
-          ? FarFieldRows(grid, points, normals, 2 * d, options.far_field_beside_cos)
+          ? FarFieldRows(grid, points, normals, 2 * d, options.far_field_beside_cos,
+                         options.far_field_ramp, options.far_field_ramp_power)
           : std::vector<FarFieldRow>();
   const double far_weight = options.far_field_weight;
   std::vector<double> b = LinearInitialisation(points, normals, d, far, far_weight, &solver);
-  ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
+  projector.Project(&b);
   result.initial_rms = MeshRms(grid, k, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * result.initial_rms, 1e-9 * diagonal);
 
@@ -652,7 +732,7 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   auto unconstrained = [&](std::vector<double>* b, int* iterations, double* defect) {
     *b = RefineLinearised(grid, k, points, normals, d, options, *b, far, far_weight, &solver,
                           iterations);
-    *defect = ProjectOntoContinuitySpace(grid, k, options.continuity, b);
+    *defect = projector.Project(b);
     double rms = MeshRms(grid, k, *b, points, normals, nullptr);
     // (Not on grids above 1 500 tetrahedra, where the Ceres fallback takes minutes, nor when the
     // start already fits to rounding.)
@@ -661,8 +741,7 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
       std::vector<double> polished = *b;
       *iterations += Refine(grid, k, options.continuity, points, normals, data, c2, c2_keep,
                             options, loss_scale, d, nullptr, &polished);
-      const double polished_defect =
-          ProjectOntoContinuitySpace(grid, k, options.continuity, &polished);
+      const double polished_defect = projector.Project(&polished);
       const double polished_rms = MeshRms(grid, k, polished, points, normals, nullptr);
       // Ceres has no far-field rows: keep its result only if it adds no sign error at the
       // far-field points (no spurious sheet in empty space).
@@ -691,7 +770,7 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
     }
     result.iterations = Refine(grid, k, 1, points, normals, data, c2, c2_keep, options, loss_scale,
                                d, &margins, &b);
-    result.continuity_defect = ProjectOntoContinuitySpace(grid, k, options.continuity, &b);
+    result.continuity_defect = projector.Project(&b);
   } else {
     const double rms = unconstrained(&b, &result.iterations, &result.continuity_defect);
     result.kept_initialisation = !(rms < result.initial_rms);

@@ -7,13 +7,38 @@
 // y* comes from SuiteSparseQR (rank-revealing sparse QR, through Eigen's SPQR module), so the
 // redundant rows are detected instead of making the system singular. One refinement pass
 // (the same projection applied to the result) removes the rounding of the first.
+// Computed in the domain points (model/bernstein_mesh_continuity.h): ker C0 = range P (b = P w,
+// P the 0/1 map from the global domain points to every tetrahedron's control points) and
+// ker C = P ker G (G = C1 P) lies inside it, so the projection onto ker C is the projection
+// onto range P (w = D^-1 P^T b, the mean of each domain point's copies, D = P^T P their count)
+// followed by the projection onto ker G in the metric of D (|P w|^2 = w^T D w), i.e. the
+// Euclidean one onto ker(G D^-1/2) in v = D^1/2 w, by the QR of (G D^-1/2)^T. Same result as the
+// QR of C^T, on about a third of the unknowns and without the C0 rows (kitten, degree 4:
+// 20 625 domain points against 60 480 control points); C0 needs no QR at all.
+// ContinuityProjector keeps the factorisation (it depends on the grid and the degree only), so
+// that a fit projecting several times factorises once.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "model/bernstein_mesh.h"
 
 namespace implicitfit {
+
+class ContinuityProjector {
+ public:
+  ContinuityProjector(const BernsteinGrid& grid, int k, int continuity);
+  ~ContinuityProjector();
+  // As ProjectOntoContinuitySpace below, with the stored factorisation.
+  double Project(std::vector<double>* b) const;
+
+ private:
+  struct Factor;
+  BernsteinGrid grid_;
+  int k_, continuity_;
+  std::unique_ptr<Factor> factor_;  // null when there are no rows (one tetrahedron)
+};
 
 // Replaces b by its orthogonal projection onto ker C; returns the largest |C b| after it,
 // relative to max |b| (model/bernstein_mesh_continuity.h ContinuityDefect).
