@@ -18,6 +18,8 @@
 //                                [--scan-degree k2,k3,... (default 4,5; 0: no further scan row)]
 //                                [--scan-cells n2 (the further scan rows' cubes; default: --cells)]
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
+//                                [--save-meshes DIR (every method's mesh as
+//                                DIR/<cloud>-<method>.ply)]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -80,7 +82,8 @@ double PeakRssMb() {
 // Runs `method` (which fills the mesh and the implicitfit fields) in a forked child, timing it
 // and reading its peak memory before judging the mesh.
 Outcome RunIsolated(const Case& c, unsigned seed,
-                    const std::function<TriangleMesh(Outcome*)>& method) {
+                    const std::function<TriangleMesh(Outcome*)>& method,
+                    const std::string& save_path = "") {
   int fd[2];
   if (pipe(fd) != 0) return {};
   std::fflush(stdout);
@@ -95,6 +98,8 @@ Outcome RunIsolated(const Case& c, unsigned seed,
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.peak_rss_mb = PeakRssMb();
+    if (!save_path.empty() && !mesh.triangles.empty())
+      implicitfit::WriteMeshPlyFile(mesh, save_path);
     o.figures = bench::JudgeMesh(mesh, c.truth, seed);
     o.figures.seconds = seconds;
     o.ok = true;
@@ -180,7 +185,8 @@ int main(int argc, char** argv) {
   std::vector<int> scan_degrees = {4, 5};
   implicitfit::MeshFitOptions defaults;  // --far-field-ramp r, --far-field-ramp-power p
   double ramp = defaults.far_field_ramp, ramp_power = defaults.far_field_ramp_power;
-  std::string only;  // run only the clouds whose name contains this
+  std::string only;      // run only the clouds whose name contains this
+  std::string save_dir;  // write the meshes here when given
   unsigned seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--points"))
@@ -208,7 +214,15 @@ int main(int argc, char** argv) {
       ramp_power = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--only"))
       only = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--save-meshes"))
+      save_dir = argv[i + 1];
   }
+  // DIR/<first word of the cloud>-<method tag>.ply, or "" when not asked.
+  const auto save_path = [&](const Case& c, const std::string& tag) {
+    return save_dir.empty()
+               ? std::string()
+               : save_dir + "/" + c.name.substr(0, c.name.find(' ')) + "-" + tag + ".ply";
+  };
   std::vector<Case> cases;
   AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_kitten.xyz", "kitten (scan)", false,
           &cases);
@@ -257,28 +271,33 @@ int main(int argc, char** argv) {
     for (const PatchRow& row : rows) {
       const bool convex = row.convex;
       const int row_degree = row.degree, row_cells = row.cells;
-      const Outcome o = RunIsolated(c, seed, [&](Outcome* out) {
-        implicitfit::MeshFitOptions fo;
-        fo.degree = row_degree;
-        fo.cells = row_cells;
-        fo.convex = convex;
-        fo.far_field_ramp = ramp;
-        fo.far_field_ramp_power = ramp_power;
-        const implicitfit::MeshFitResult r = implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
-        out->patches = r.tetrahedra;
-        out->fit_rms = r.rms;
-        out->initial_rms = r.initial_rms;
-        out->box_sign_errors = r.box_sign_errors;
-        if (convex) out->certified = r.success && r.certified_convex;
-        if (!r.success) return TriangleMesh();
-        implicitfit::MeshOptions mo;
-        mo.has_box = true;
-        mo.box_min = r.grid.BoxMin();
-        mo.box_max = r.grid.BoxMax();
-        mo.cell = (mo.box_max - mo.box_min).maxCoeff() / 128;
-        mo.num_threads = 2;
-        return implicitfit::MeshModel(r.ToModel(), mo).mesh;
-      });
+      const Outcome o = RunIsolated(
+          c, seed,
+          [&](Outcome* out) {
+            implicitfit::MeshFitOptions fo;
+            fo.degree = row_degree;
+            fo.cells = row_cells;
+            fo.convex = convex;
+            fo.far_field_ramp = ramp;
+            fo.far_field_ramp_power = ramp_power;
+            const implicitfit::MeshFitResult r =
+                implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
+            out->patches = r.tetrahedra;
+            out->fit_rms = r.rms;
+            out->initial_rms = r.initial_rms;
+            out->box_sign_errors = r.box_sign_errors;
+            if (convex) out->certified = r.success && r.certified_convex;
+            if (!r.success) return TriangleMesh();
+            implicitfit::MeshOptions mo;
+            mo.has_box = true;
+            mo.box_min = r.grid.BoxMin();
+            mo.box_max = r.grid.BoxMax();
+            mo.cell = (mo.box_max - mo.box_min).maxCoeff() / 128;
+            mo.num_threads = 2;
+            return implicitfit::MeshModel(r.ToModel(), mo).mesh;
+          },
+          save_path(c,
+                    std::string(convex ? "convex-" : "") + "degree" + std::to_string(row_degree)));
       std::string row_label;
       if (row_degree != 3) row_label += " --degree " + std::to_string(row_degree);
       if (row_cells > 0) row_label += " --cells " + std::to_string(row_cells);
@@ -292,11 +311,13 @@ int main(int argc, char** argv) {
     }
     for (int depth : {7, 8}) {
       const Outcome o = RunIsolated(
-          c, seed, [&](Outcome*) { return bench::PoissonMesh(c.points, c.normals, depth); });
+          c, seed, [&](Outcome*) { return bench::PoissonMesh(c.points, c.normals, depth); },
+          save_path(c, "poisson" + std::to_string(depth)));
       Row(c, "PCL Poisson depth " + std::to_string(depth), o);
     }
-    const Outcome o =
-        RunIsolated(c, seed, [&](Outcome*) { return bench::HoppeMesh(c.points, c.normals, 100); });
+    const Outcome o = RunIsolated(
+        c, seed, [&](Outcome*) { return bench::HoppeMesh(c.points, c.normals, 100); },
+        save_path(c, "hoppe"));
     Row(c, "PCL marching cubes (Hoppe) 100^3", o);
   }
   return 0;
