@@ -185,6 +185,7 @@ int main(int argc, char** argv) {
   std::vector<int> scan_degrees = {4, 5};
   implicitfit::MeshFitOptions defaults;  // --far-field-ramp r, --far-field-ramp-power p
   double ramp = defaults.far_field_ramp, ramp_power = defaults.far_field_ramp_power;
+  bool winding = defaults.far_field_winding;
   std::string only;      // run only the clouds whose name contains this
   std::string save_dir;  // write the meshes here when given
   unsigned seed = 1;
@@ -216,6 +217,8 @@ int main(int argc, char** argv) {
       only = argv[i + 1];
     else if (!std::strcmp(argv[i], "--save-meshes"))
       save_dir = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--tangent-plane-signs"))
+      winding = std::atoi(argv[i + 1]) == 0;
   }
   // DIR/<first word of the cloud>-<method tag>.ply, or "" when not asked.
   const auto save_path = [&](const Case& c, const std::string& tag) {
@@ -280,6 +283,7 @@ int main(int argc, char** argv) {
             fo.convex = convex;
             fo.far_field_ramp = ramp;
             fo.far_field_ramp_power = ramp_power;
+            fo.far_field_winding = winding;
             const implicitfit::MeshFitResult r =
                 implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
             out->patches = r.tetrahedra;

@@ -9,10 +9,12 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "fit/continuity_projection.h"
 #include "fit/patch_fitter.h"
 #include "fit/reused_cholesky.h"
+#include "fit/winding_number.h"
 #include "model/bernstein_conversion.h"
 #include "model/bernstein_mesh_certificate.h"
 #include "model/bernstein_mesh_continuity.h"
@@ -377,6 +379,14 @@ class DomainLeastSquares {
 // degrees) with n_p lies beside the data, beyond an open rim, rather than above or below it: the
 // tangent-plane sign says nothing there, and the target is +|x - p| (outside) too, so that the
 // cap of an open scan closes near its rim instead of at the box (oni: Chamfer 0.0227 -> 0.0209).
+// With `winding` (the default, MeshFitOptions::far_field_winding), the sign of a row off the
+// box comes from the generalised winding number w of the cloud instead (fit/winding_number.h:
+// inside where w > 1/2), and its magnitude is at most |w - 1/2| / |grad w|, the first-order
+// distance to the level w = 1/2: the tangent-plane test says nothing beyond an open rim and the
+// "beside" rule capped oni's unscanned base where the data stopped sideways, 0.06 below the
+// rim; w's level 1/2 spans the rim (flat for a planar rim) and the magnitude bound makes the
+// targets one consistent signed distance across it, so the cap follows that level instead of
+// wobbling between lattice points (see the header for the figures).
 // Row weight (not on the box): min(1, (distance to the data / (ramp h))^ramp_power), see the
 // header. Nearest point by brute force (lattice x points: below 10^9 operations for the grids
 // used here; fit/ has no spatial index).
@@ -389,7 +399,8 @@ struct FarFieldRow {
 
 std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vector<Vec>& points,
                                       const std::vector<Vec>& normals, double band,
-                                      double beside_cos, double ramp, double ramp_power) {
+                                      double beside_cos, double ramp, double ramp_power,
+                                      const WindingNumber* winding) {
   std::vector<FarFieldRow> rows;
   const int per = 2;  // samples per cube edge
   const double step = grid.cell / per;
@@ -412,7 +423,17 @@ std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vect
         const double weight =
             ramp > 0 && !on_box ? std::min(1.0, std::pow(distance / (ramp * grid.cell), ramp_power))
                                 : 1.0;
-        rows.push_back({c, on_box || beside ? distance : hoppe, on_box, weight});
+        double target = on_box || beside ? distance : hoppe;
+        if (winding && !on_box) {
+          Vec grad_w;
+          const double w = winding->Evaluate(c, &grad_w);
+          const bool inside = w > 0.5;
+          const bool agrees = !beside && (hoppe < 0) == inside;
+          const double magnitude = std::min(agrees ? std::abs(hoppe) : distance,
+                                            std::abs(w - 0.5) / std::max(grad_w.norm(), 1e-300));
+          target = inside ? -magnitude : magnitude;
+        }
+        rows.push_back({c, target, on_box, weight});
       }
   return rows;
 }
@@ -715,11 +736,14 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   DomainLeastSquares solver(grid, k, options.continuity, options, c2, c2_keep);
   const ContinuityProjector projector(grid, k, options.continuity);
   // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
-  const std::vector<FarFieldRow> far =
-      options.far_field_weight > 0
-          ? FarFieldRows(grid, points, normals, 2 * d, options.far_field_beside_cos,
-                         options.far_field_ramp, options.far_field_ramp_power)
-          : std::vector<FarFieldRow>();
+  std::vector<FarFieldRow> far;
+  if (options.far_field_weight > 0) {
+    std::optional<WindingNumber> winding;
+    if (options.far_field_winding) winding.emplace(points, normals);
+    far = FarFieldRows(grid, points, normals, 2 * d, options.far_field_beside_cos,
+                       options.far_field_ramp, options.far_field_ramp_power,
+                       winding ? &*winding : nullptr);
+  }
   const double far_weight = options.far_field_weight;
   std::vector<double> b = LinearInitialisation(points, normals, d, far, far_weight, &solver);
   projector.Project(&b);

@@ -157,8 +157,9 @@ TEST(BernsteinMeshFitter, UnionOfTwoSpheres) {
 // its bottom cap (z > -0.3: a hole of radius 0.95), noise-free, outward normals. Judged
 // independently of the fitter: f > 0 at every sample of a 31 x 31 lattice on each box face
 // (then {f <= 0} cannot reach the box), the marching-cubes mesh of the zero set on the box is
-// watertight (every edge in exactly two triangles), and the scanned part is still fitted (the
-// data points' distance to the zero set, by Newton projection, within 1% of the radius).
+// watertight (every edge in exactly two triangles), its cap closes near the rim plane, and the
+// scanned part is still fitted (the data points' distance to the zero set, by Newton
+// projection).
 TEST(BernsteinMeshClosing, OpenScanClosesInsideTheBox) {
   Model sphere;
   sphere.AddPrimitive(NodeType::kSphere, {0, 0, 0, 1.0});
@@ -208,16 +209,28 @@ TEST(BernsteinMeshClosing, OpenScanClosesInsideTheBox) {
   long bad_edges = 0;
   for (const auto& [edge, count] : uses) bad_edges += count != 2;
   EXPECT_EQ(bad_edges, 0);
-  // The lowest mesh vertex: the cap lies below the rim and inside the box.
+  // The lowest mesh vertex: the cap closes at the rim (z = -0.3), not farther down: the
+  // far-field signs come from the winding number, whose level 1/2 spans a planar rim with the
+  // flat disk (fit/winding_number.h); with the nearest point's tangent plane the cap bulged to
+  // z = -0.504, 0.2 below the rim.
   double lowest = hi.z();
   for (const Vec& v : mesh.vertices) lowest = std::min(lowest, v.z());
   EXPECT_LT(lowest, -0.3);
-  EXPECT_GT(lowest, lo.z());
+  EXPECT_GT(lowest, -0.4);
 
+  // The scanned part is still fitted: 1% of the radius (5 cubes across the box) away from the
+  // rim, where the flat cap meets the sphere at a crease the C1 cubic spline rounds off (2%).
+  std::vector<Vec> away;
+  for (const Vec& p : points)
+    if (p.z() > 0) away.push_back(p);
   const double data_rms = RmsDistanceToZeroSet(m, points);
-  EXPECT_LE(data_rms, 0.01);  // 1% of the radius (5 cubes across the box)
-  std::printf("open sphere: %zu points, rms %.3g, data distance rms %.3g, lowest vertex %.3f\n",
-              points.size(), r.rms, data_rms, lowest);
+  const double away_rms = RmsDistanceToZeroSet(m, away);
+  EXPECT_LE(away_rms, 0.01);
+  EXPECT_LE(data_rms, 0.02);
+  std::printf(
+      "open sphere: %zu points, rms %.3g, data distance rms %.3g (z > 0: %.3g), lowest vertex "
+      "%.3f\n",
+      points.size(), r.rms, data_rms, away_rms, lowest);
 }
 
 }  // namespace
