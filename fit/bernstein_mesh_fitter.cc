@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <chrono>
@@ -714,6 +715,14 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   if (normals.size() != points.size() || points.size() < 10) {
     result.message = "a patch mesh needs at least 10 points with normals";
     return result;
+  }
+  {
+    Eigen::AlignedBox3d box;
+    for (const Vec& p : points) box.extend(p);
+    if (!(box.diagonal().norm() > 0) || !std::isfinite(box.diagonal().norm())) {
+      result.message = "the points span no finite box (they all coincide): no surface to fit";
+      return result;
+    }
   }
   const int k = options.degree;
   const long long n = NumBernsteinControlPoints(k);

@@ -111,6 +111,21 @@ TEST(MeshCli, InvalidOptionsExit2AndNoModel) {
   EXPECT_FALSE(FileExists(dir + "/m.json"));
 }
 
+// Degenerate data (every point at the same place): the fit fails (exit 1, as for the
+// primitives), names the file and the reason, and writes no model.
+TEST(MeshCli, CoincidentPointsFailCleanly) {
+  const std::string dir = testsupport::ScratchDir("mesh_coincident");
+  std::string text;
+  for (int i = 0; i < 12; ++i) text += "0.5 0.5 0.5 0 0 1\n";
+  WriteText(dir + "/same.xyz", text);
+  const auto r =
+      RunCommand(kCli + " fit " + dir + "/same.xyz --model patch-mesh --out " + dir + "/m.json");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("same.xyz"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("coincide"), std::string::npos) << r.err;
+  EXPECT_FALSE(FileExists(dir + "/m.json"));
+}
+
 TEST(MeshCli, BatchFitsMeshesAndPatchesAndResumes) {
   const std::string dir = testsupport::ScratchDir("mesh_batch");
   const std::string a = SphereCloud(dir, "a", 1.0, 3), b = SphereCloud(dir, "b", 0.8, 4);
