@@ -86,6 +86,15 @@ struct MeshFitOptions {
   double far_field_ramp_power = 1.0;
   double box_margin = 0.1;  // grid box: cloud box + max(5%, box_margin x longest) per side
                             // (not with --convex, which keeps 5%)
+  // Step 2 (header): Gauss-Newton rows from the exact linearisation of f/|grad f| and of the
+  // normal residual (false: the former frozen-gradient rows).
+  bool exact_linearisation = true;
+  // Step 2: when the refinement stalls, the far-field rows' weight is multiplied by
+  // far_field_relaxation (0 or 1: never), down to far_field_floor x far_field_weight, while the
+  // stages improve and keep every sign away from the data (sign_guard_samples per cube edge).
+  double far_field_relaxation = 0.3;
+  double far_field_floor = 0.005;
+  int sign_guard_samples = 6;
   bool IsValid(std::string* error) const;
 };
 
