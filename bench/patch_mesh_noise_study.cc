@@ -8,7 +8,9 @@
 // alone, so the difference is the part that follows the noise).
 //   build/bench/patch_mesh_noise_study [--shape torus|union|ellipsoid] [--points 20000]
 //       [--seed 1] [--noise-free 0|1] [--degree k] [--cells n] [--normal-weight w]
-//       [--smoothing-weight w] [--curvature-weight w (-1: the fitter's rule)]
+//       [--smoothing-weight w] [--far-field-weight w] [--far-field-ramp r]
+//       [--far-field-relaxation r (0: the refinement before issue 11's relaxation)]
+//       [--max-iterations n]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -63,6 +65,8 @@ int main(int argc, char** argv) {
       fo.far_field_weight = std::atof(v);
     else if (a == "--far-field-ramp")
       fo.far_field_ramp = std::atof(v);
+    else if (a == "--far-field-relaxation")
+      fo.far_field_relaxation = std::atof(v);
     else if (a == "--max-iterations")
       fo.max_iterations = std::atoi(v);
     else {
