@@ -98,7 +98,7 @@ long long EmptySpaceSignGuard::Changes(int degree,
   for (size_t s = 0; s < samples_.size(); ++s) {
     double e;
     const double f = ValueAndDistance(grid_, degree, control_points, samples_[s], &e);
-    changes += SignOf(f) != signs_[s] || (clear_[s] && e <= rho_);
+    changes += clear_[s] && (SignOf(f) != signs_[s] || e <= rho_);
   }
   return changes;
 }

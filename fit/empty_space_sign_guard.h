@@ -8,13 +8,13 @@
 // space lies within rho = s sqrt(3)/2 of a sample, so a new component of the zero set anywhere
 // (farther than band from the data) comes within rho of some sample x. Record(b) stores, per
 // sample, the sign of f and whether the zero set is clear of it, i.e. its first-order distance
-// e(x) = |f(x)| / |grad f(x)| exceeds 2 rho; Changes(b) counts the samples where f's sign differs
-// from the recorded one (0 counts as its own sign) or that were clear and are no longer
-// (e(x) <= rho: something of the zero set came within rho). A surface that moves by less than
-// rho changes nothing; a new blob or sheet, even one smaller than s, comes within rho of some
-// sample and changes its flag (to first order in e), unless the recorded surface was already
-// within 2 rho of that sample (the hysteresis between rho and 2 rho lets the surface near the
-// data move a little without tripping the guard).
+// e(x) = |f(x)| / |grad f(x)| exceeds 2 rho; Changes(b) counts the clear samples where f's sign
+// now differs from the recorded one (0 counts as its own sign) or the zero set came within rho
+// (e(x) <= rho). Samples within 2 rho of the recorded zero set are not watched: there the
+// surface may move (oni's cap over its unscanned base moves across samples as the fit improves).
+// A new blob or sheet, even one smaller than s, comes within rho of some sample and trips it (to
+// first order in e), unless it grows within 2 rho of the recorded zero set; a surface that moves
+// by less than rho trips nothing.
 #pragma once
 
 #include <Eigen/Core>

@@ -95,6 +95,32 @@ TEST_F(EmptySpaceSignGuardTest, SmallBlobBetweenSamplesIsCaught) {
   EXPECT_GT(guard.Changes(2, flipped), 0);
 }
 
+// An open scan: the data is the sphere's cap z > 0.3; its lower part is the closure in empty
+// space, which the fit may move. Moving it by 0.1 < rho (= sqrt(3)/12 = 0.144) crosses samples
+// but trips nothing (they were within 2 rho of the recorded zero set); moving it by 0.5 brings
+// it within rho of samples that were clear.
+TEST_F(EmptySpaceSignGuardTest, ClosureMayMoveALittleButNotFar) {
+  std::vector<Vec> cap;
+  for (const Vec& p : points_)
+    if (p.z() > 0.3) cap.push_back(p);
+  EmptySpaceSignGuard guard(grid_, cap, 0.2, 6);
+  guard.Record(2, Mesh(grid_, [](long long) { return Sphere(Vec::Zero(), 1.0); }));
+  const std::vector<double> moved =
+      Mesh(grid_, [](long long) { return Sphere(Vec(0, 0, -0.1), 1); });
+  // The move crosses samples: some sample's sign differs (the guard ignores them).
+  long long crossed = 0;
+  for (int i = 0; i <= 24; ++i)
+    for (int j = 0; j <= 24; ++j)
+      for (int l = 0; l <= 24; ++l) {
+        const Vec x = Vec::Constant(-2) + Vec(i, j, l) / 6.0;
+        crossed +=
+            (Sphere(Vec::Zero(), 1)(x) > 0) != (Sphere(Vec(0, 0, -0.1), 1)(x) > 0) && x.z() < -0.2;
+      }
+  ASSERT_GT(crossed, 0);
+  EXPECT_EQ(guard.Changes(2, moved), 0);
+  EXPECT_GT(guard.Changes(2, Mesh(grid_, [](long long) { return Sphere(Vec(0, 0, -0.5), 1); })), 0);
+}
+
 TEST(EmptySpaceSignGuard, ChangesBeforeRecordThrows) {
   BernsteinGrid grid;
   const EmptySpaceSignGuard guard(grid, {Vec::Zero()}, 0.1, 2);
