@@ -18,6 +18,8 @@
 //                                [--scan-degree k2,k3,... (default 4,5; 0: no further scan row)]
 //                                [--scan-cells n2 (the further scan rows' cubes; default: --cells)]
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
+//                                [--far-field-relaxation r] [--far-field-floor f]
+//                                [--sign-guard-samples s] (MeshFitOptions, step 2)
 //                                [--save-meshes DIR (every method's mesh as
 //                                DIR/<cloud>-<method>.ply)]
 #include <sys/resource.h>
@@ -186,6 +188,8 @@ int main(int argc, char** argv) {
   implicitfit::MeshFitOptions defaults;  // --far-field-ramp r, --far-field-ramp-power p
   double ramp = defaults.far_field_ramp, ramp_power = defaults.far_field_ramp_power;
   bool winding = defaults.far_field_winding;
+  double relaxation = defaults.far_field_relaxation, floor = defaults.far_field_floor;
+  int guard_samples = defaults.sign_guard_samples;
   std::string only;      // run only the clouds whose name contains this
   std::string save_dir;  // write the meshes here when given
   unsigned seed = 1;
@@ -213,6 +217,12 @@ int main(int argc, char** argv) {
       ramp = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--far-field-ramp-power"))
       ramp_power = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--far-field-relaxation"))
+      relaxation = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--far-field-floor"))
+      floor = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--sign-guard-samples"))
+      guard_samples = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--only"))
       only = argv[i + 1];
     else if (!std::strcmp(argv[i], "--save-meshes"))
@@ -284,6 +294,9 @@ int main(int argc, char** argv) {
             fo.far_field_ramp = ramp;
             fo.far_field_ramp_power = ramp_power;
             fo.far_field_winding = winding;
+            fo.far_field_relaxation = relaxation;
+            fo.far_field_floor = floor;
+            fo.sign_guard_samples = guard_samples;
             const implicitfit::MeshFitResult r =
                 implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
             out->patches = r.tetrahedra;

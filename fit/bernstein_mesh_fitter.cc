@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "fit/continuity_projection.h"
+#include "fit/empty_space_sign_guard.h"
 #include "fit/patch_fitter.h"
 #include "fit/reused_cholesky.h"
 #include "fit/winding_number.h"
@@ -226,21 +227,38 @@ class DomainLeastSquares {
     for (long long j = 0; j < n_; ++j) row[j] = weight * basis_[j];
   }
 
-  // The three rows weight (grad f(x) - target); grad B_j by the patch's derivatives of unit
-  // control vectors.
-  void AddGradientRows(const Vec& x, double weight, const Vec& target) {
+  // Rows weight_r (a_r f(x) + c_r . grad f(x) - target_r) at one point x: linear functionals of
+  // f's value and gradient (the gradient rows below; the exact linearisations of f/|grad f| and
+  // grad f/|grad f| in RefineLinearised); grad B_j by the patch's derivatives of unit control
+  // vectors, computed once for all the rows.
+  struct PointRow {
+    double weight, a;
+    Vec c;
+    double target;
+  };
+  void AddPointRows(const Vec& x, const PointRow* rows, int count) {
     double tau[4];
     const long long t = grid_.Locate(x.data(), tau);
     const Tetrahedron tet = grid_.TetrahedronOf(t);
-    for (int c = 0; c < 3; ++c) NewRow(t, weight * target[c]);
+    BasisValues(k_, tau, basis_.data());
+    for (int r = 0; r < count; ++r) NewRow(t, rows[r].weight * rows[r].target);
     unit_.assign(static_cast<size_t>(n_), 0.0);
     for (long long j = 0; j < n_; ++j) {
       unit_[j] = 1.0;
       Vec g;
       BernsteinPatch::Derivatives(k_, tet, unit_.data(), x.data(), &g);
       unit_[j] = 0.0;
-      for (int c = 0; c < 3; ++c) coefficients_[(rows_ - 3 + c) * n_ + j] = weight * g[c];
+      for (int r = 0; r < count; ++r)
+        coefficients_[(rows_ - count + r) * n_ + j] =
+            rows[r].weight * (rows[r].a * basis_[j] + rows[r].c.dot(g));
     }
+  }
+
+  // The three rows weight (grad f(x) - target).
+  void AddGradientRows(const Vec& x, double weight, const Vec& target) {
+    PointRow rows[3];
+    for (int c = 0; c < 3; ++c) rows[c] = {weight, 0.0, Vec::Unit(c), target[c]};
+    AddPointRows(x, rows, 3);
   }
 
   // Solves with the rows added since the last Solve (then drops them); returns b = P w.
@@ -508,6 +526,15 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
   const long long n = NumBernsteinControlPoints(k);
   const double normal_weight = options.normal_weight * 10 * d;  // normal_weight x diagonal / 10
   constexpr double scale_weight = 0.1, loss_factor = 3.0;
+  // The far-field relaxation (header, step 2): the weight of the far-field rows, lowered by
+  // far_field_relaxation whenever a stage stalls, down to far_field_floor x the start weight;
+  // the sign guard (fit/empty_space_sign_guard.h) made at the first lowering.
+  const bool relax = !far.empty() && options.far_field_relaxation > 0 &&
+                     options.far_field_relaxation < 1 && options.far_field_floor < 1;
+  const double lowest_far_weight = options.far_field_floor * far_weight;
+  const double start_far_weight = far_weight;
+  std::unique_ptr<EmptySpaceSignGuard> guard;
+  bool stage_improved = false;
   double rms = MeshRms(grid, k, b, points, normals, nullptr);
   std::vector<double> best = b;
   double best_rms = rms;
@@ -525,9 +552,25 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
       const double gn = std::max(g.norm(), 1e-12);
       const double r = f / gn;
       const double c = s > 0 ? 1.0 / std::sqrt(1.0 + (r / s) * (r / s)) : 1.0;
-      solver->AddValueRow(points[i], c / gn, 0.0);
-      if (normal_weight > 0)
-        solver->AddGradientRows(points[i], normal_weight * c / gn, gn * normals[i]);
+      if (options.exact_linearisation && far_weight < start_far_weight) {
+        // r = f/|g| is homogeneous of degree 0 in b, so J b_0 = 0 and the linearised residual
+        // r_0 + J (b - b_0) = 0 is the row J b = -r_0 with
+        // J = B(p)/|g| - (f/|g|^3) g . grad B(p); for u = g/|g|, J_u = (I - u u^T) grad B / |g|,
+        // again J_u b_0 = 0, so the rows J_u b = n - u (n oriented as u).
+        const Vec u = g / gn;
+        DomainLeastSquares::PointRow rows[4];
+        rows[0] = {c, 1.0 / gn, -(f / (gn * gn * gn)) * g, -r};
+        const Eigen::Matrix3d projector = (Eigen::Matrix3d::Identity() - u * u.transpose()) / gn;
+        const double sign = g.dot(normals[i]) < 0 ? -1.0 : 1.0;
+        for (int a = 0; a < 3; ++a)
+          rows[1 + a] = {normal_weight * c, 0.0, projector.row(a).transpose(),
+                         sign * normals[i][a] - u[a]};
+        solver->AddPointRows(points[i], rows, normal_weight > 0 ? 4 : 1);
+      } else {
+        solver->AddValueRow(points[i], c / gn, 0.0);
+        if (normal_weight > 0)
+          solver->AddGradientRows(points[i], normal_weight * c / gn, gn * normals[i]);
+      }
       solver->AddValueRow(points[i] + d * normals[i], scale_weight, d);
       solver->AddValueRow(points[i] - d * normals[i], scale_weight, -d);
     }
@@ -542,15 +585,36 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
     for (double step = 1.0; step >= 1.0 / 16; step *= 0.5) {
       for (size_t j = 0; j < b.size(); ++j) trial[j] = b[j] + step * (full[j] - b[j]);
       next = MeshRms(grid, k, trial, points, normals, nullptr);
-      admissible = FarFieldSignErrors(grid, k, trial, far) <= start_errors;
+      // (The guard only for a step that would be taken: it costs more than the RMS.)
+      admissible = FarFieldSignErrors(grid, k, trial, far) <= start_errors &&
+                   (!guard || !(next < rms) || guard->Changes(k, trial) == 0);
       if (next < rms && admissible) break;
     }
     b = trial;
     if (next < best_rms && admissible) {
       best = b;
       best_rms = next;
+      stage_improved = true;
     }
-    if (!(next < 0.995 * rms)) break;
+    // A relaxed stage (guard made) also ends when no step length is admissible.
+    if (!(next < 0.995 * rms) || (guard && !admissible)) {
+      // Stalled: the next, lighter stage from the best iterate, while the last stage improved
+      // (a stage whose steps were all rejected, e.g. by the guard, ends the relaxation).
+      if (relax && stage_improved &&
+          far_weight * options.far_field_relaxation >= lowest_far_weight * (1 - 1e-12)) {
+        if (!guard) {
+          guard = std::make_unique<EmptySpaceSignGuard>(grid, points, 2 * d,
+                                                        options.sign_guard_samples);
+          guard->Record(k, best);
+        }
+        far_weight *= options.far_field_relaxation;
+        b = best;
+        rms = best_rms;
+        stage_improved = false;
+        continue;
+      }
+      break;
+    }
     rms = next;
   }
   return best;
@@ -672,6 +736,12 @@ bool MeshFitOptions::IsValid(std::string* error) const {
     return fail("far_field_ramp must be >= 0 (cubes)");
   if (!(far_field_ramp_power > 0.0 && std::isfinite(far_field_ramp_power)))
     return fail("far_field_ramp_power must be positive");
+  if (!(far_field_relaxation >= 0.0 && far_field_relaxation <= 1.0))
+    return fail("far_field_relaxation must be in [0, 1]");
+  if (!(far_field_floor >= 0.0 && far_field_floor <= 1.0))
+    return fail("far_field_floor must be in [0, 1]");
+  if (sign_guard_samples < 1 || sign_guard_samples > 16)
+    return fail("sign_guard_samples must be in 1..16");
   return true;
 }
 
