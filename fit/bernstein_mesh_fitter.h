@@ -121,7 +121,7 @@ struct MeshFitOptions {
   // stages improve and keep every sign away from the data (sign_guard_samples per cube edge).
   double far_field_relaxation = 0.3;
   double far_field_floor = 0.005;
-  int sign_guard_samples = 6;
+  int sign_guard_samples = 8;
   bool IsValid(std::string* error) const;
 };
 
