@@ -1,10 +1,10 @@
 // implicitfit check MODEL.json... [--json] [--sample N] — the convexity certificate of every
-// Bernstein patch in every file (model/convexity_certificate.h). Exit 0 when every patch is
+// Bernstein patch in every file (model/certificates/convexity_certificate.h). Exit 0 when every patch is
 // certified convex, 1 when some is not (or when --sample contradicts a certificate), 2 when a
 // file is unreadable or invalid (all files are read before anything is printed).
 // --json prints {"convex", "files": [{"file", "convex", "patches": [{"degree", "convex",
 // "min_eigenvalue"}]}]} (DESIGN.md); --sample N adds a "sample" object per patch and a summary.
-// Additive fields (issue #12, model/convexity_fields.h): per file "tree" and "nodes" (tree
+// Additive fields (issue #12, model/certificates/convexity_fields.h): per file "tree" and "nodes" (tree
 // certificate), per patch the G-2/G-3/G-4 fields. A file without patches is convex only when its
 // tree is certified (exit 1 otherwise); --patches-only restores the old vacuous verdict.
 #include <cstdio>
@@ -16,10 +16,10 @@
 
 #include "apps/check_mesh.h"
 #include "apps/command.h"
-#include "datasets/model_file.h"
-#include "model/convexity_fields.h"
-#include "model/convexity_report.h"
-#include "model/tangent_plane_test.h"
+#include "datasets/io/model_file.h"
+#include "model/certificates/convexity_fields.h"
+#include "model/certificates/convexity_report.h"
+#include "model/certificates/tangent_plane_test.h"
 
 namespace implicitfit {
 namespace {
@@ -36,7 +36,7 @@ struct PatchReport {
   int degree = 0;
   ConvexityCertificate certificate;
   TangentPlaneTestResult sample;
-  nlohmann::ordered_json extra;  // model/convexity_fields.h (--json only)
+  nlohmann::ordered_json extra;  // model/certificates/convexity_fields.h (--json only)
 };
 
 struct SampleSummary {

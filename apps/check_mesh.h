@@ -1,4 +1,4 @@
-// `check` on bernstein_mesh nodes (model/bernstein_mesh_certificate.h): per-tetrahedron
+// `check` on bernstein_mesh nodes (model/certificates/bernstein_mesh_certificate.h): per-tetrahedron
 // certificates, the largest C1 defect, and the verdict "convex on the box" only when both hold.
 // Additive to the check output: JSON files[i].meshes = [{"label", "degree", "continuity",
 // "tetrahedra", "certified_tetrahedra", "min_eigenvalue", "worst_tetrahedron", "c1_defect",
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "model/bernstein_mesh_certificate.h"
+#include "model/certificates/bernstein_mesh_certificate.h"
 #include "model/model.h"
 
 namespace implicitfit {

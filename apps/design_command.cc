@@ -1,6 +1,6 @@
 // implicitfit design CLOUD --primitive plane|paraboloid --count m [--delta d] [--epsilon e]
 //                   [--order n] --out MODEL.json
-// Li & Phillips' design from oriented points (fit/design_builder.h): m oriented
+// Li & Phillips' design from oriented points (fit/tree/design_builder.h): m oriented
 // representatives of the cloud, written as the smooth intersection of the enclosing ellipsoid
 // and one plane / paraboloid per representative; `fit --init MODEL.json` refines it.
 // Exit 0 on success, 2 for invalid usage or input (no output file).
@@ -8,10 +8,10 @@
 #include <memory>
 
 #include "apps/command.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/oriented_cloud.h"
-#include "fit/design_builder.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "fit/tree/design_builder.h"
 
 namespace implicitfit {
 namespace {

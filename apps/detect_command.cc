@@ -1,7 +1,7 @@
 // implicitfit detect CLOUD --out SCENE.json [--labels LABELS.txt] [--ply SEGMENTED.ply]
 //                    [--report R.json] [--kinds plane,sphere,cylinder,cone,torus]
 //                    [--threshold t] [--min-points m] [--seed s] [--threads n]
-// Every primitive of a multi-primitive cloud, with its points (fit/primitive_detector.h).
+// Every primitive of a multi-primitive cloud, with its points (fit/detect/primitive_detector.h).
 // Exit 0 with at least one primitive, 1 when none is found (no scene written), 2 for invalid
 // usage or input.
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include "apps/command.h"
 #include "apps/detect_job.h"
-#include "datasets/atomic_file.h"
+#include "datasets/io/atomic_file.h"
 
 namespace implicitfit {
 namespace {

@@ -3,11 +3,11 @@
 #include <map>
 #include <sstream>
 
-#include "datasets/io_error.h"
-#include "datasets/neighbourhoods.h"
-#include "datasets/oriented_cloud.h"
-#include "datasets/ply_writer.h"
-#include "fit/primitive_fitter.h"
+#include "datasets/io/io_error.h"
+#include "datasets/normals/neighbourhoods.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "datasets/clouds/ply_writer.h"
+#include "fit/primitive/primitive_fitter.h"
 
 namespace implicitfit {
 

@@ -1,7 +1,7 @@
 // The detection of one cloud file, shared by the `detect` command (and `batch --model scene`):
-// read the cloud with oriented normals (datasets/oriented_cloud.h: estimated and oriented when
-// the file has none), its k-nearest-neighbour graph and spacing (datasets/neighbourhoods.h),
-// detect every primitive (fit/primitive_detector.h), and build the scene (datasets/scene_file.h)
+// read the cloud with oriented normals (datasets/normals/oriented_cloud.h: estimated and oriented when
+// the file has none), its k-nearest-neighbour graph and spacing (datasets/normals/neighbourhoods.h),
+// detect every primitive (fit/detect/primitive_detector.h), and build the scene (datasets/io/scene_file.h)
 // and the JSON report:
 //   {"cloud", "points", "normals", "primitives", "unassigned", "spacing", "noise", "threshold",
 //    "normal_angle_deg", "min_points", "seeds", "candidates_accepted", "merges", "seconds",
@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "datasets/point_cloud.h"
-#include "datasets/scene_file.h"
-#include "fit/primitive_detector.h"
+#include "datasets/clouds/point_cloud.h"
+#include "datasets/io/scene_file.h"
+#include "fit/detect/primitive_detector.h"
 
 namespace implicitfit {
 

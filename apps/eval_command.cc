@@ -3,8 +3,8 @@
 #include <string>
 
 #include "apps/command.h"
-#include "datasets/cloud_file.h"
-#include "datasets/model_file.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/io/model_file.h"
 
 namespace implicitfit {
 

@@ -1,6 +1,6 @@
 // implicitfit fit CLOUD --model KIND --out MODEL.json [--report R.json] [--seed s]
 //                 [--fix FIELD=V[,V,V] ...] [--threshold t]
-// Fits one primitive (fit/primitive_fitter.h); prints the model and its residual figures.
+// Fits one primitive (fit/primitive/primitive_fitter.h); prints the model and its residual figures.
 // Exit 0 on success; 1 when the fit fails (too few inliers, no convergence) with the reason,
 // and no model file; 2 for invalid usage or input.
 #include <cstdio>
@@ -10,11 +10,11 @@
 #include "apps/command.h"
 #include "apps/fit_job.h"
 #include "apps/fit_model_kinds.h"
-#include "datasets/atomic_file.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "fit/primitive_fitter.h"
-#include "model/model_json.h"
+#include "datasets/io/atomic_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "fit/primitive/primitive_fitter.h"
+#include "model/file/model_json.h"
 
 namespace implicitfit {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <sstream>
 
-#include "datasets/io_error.h"
-#include "datasets/normal_trust.h"
-#include "fit/fit_report.h"
+#include "datasets/io/io_error.h"
+#include "datasets/normals/normal_trust.h"
+#include "fit/common/fit_report.h"
 
 namespace implicitfit {
 namespace {

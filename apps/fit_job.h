@@ -1,5 +1,5 @@
 // The fit of one cloud file, shared by the `fit` and `batch` commands: read the cloud
-// (datasets/cloud_file.h), fit one primitive (fit/primitive_fitter.h) and build the JSON report
+// (datasets/clouds/cloud_file.h), fit one primitive (fit/primitive/primitive_fitter.h) and build the JSON report
 // that `fit --report` writes:
 //   {"success", "message", "points", "inliers", "rms_distance", "max_distance", "sigma",
 //    "mean_normal_angle_deg", "iterations", "rounds", "seconds", "normals",
@@ -7,7 +7,7 @@
 //    "estimator", "points_only", "form": {"rms", "min_distance", "max_distance", "form_error"},
 //    least-squares: "final_step"; minimum-zone: "zone": {"width", "optimality_verified",
 //    "outer_contacts", "inner_contacts", "contacts": [{"index", "side", "multiplier"}]}}
-// Clouds without trustworthy normals are fitted from points alone (datasets/normal_trust.h).
+// Clouds without trustworthy normals are fitted from points alone (datasets/normals/normal_trust.h).
 // Writing the files is left to the commands.
 #pragma once
 
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/primitive_fitter.h"
+#include "fit/primitive/primitive_fitter.h"
 
 namespace implicitfit {
 

@@ -1,17 +1,17 @@
 // fit CLOUD --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1]
 //     [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh
-// (fit/bernstein_mesh_fitter.h). Exit 0 success; 1 the fit failed or (--convex) the
+// (fit/bernstein/bernstein_mesh_fitter.h). Exit 0 success; 1 the fit failed or (--convex) the
 // certificate failed, no model written; 2 invalid usage or input.
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "apps/fit_model_kinds.h"
-#include "datasets/atomic_file.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/oriented_cloud.h"
-#include "fit/bernstein_mesh_fitter.h"
+#include "datasets/io/atomic_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "fit/bernstein/bernstein_mesh_fitter.h"
 
 namespace implicitfit {
 

@@ -5,16 +5,16 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "datasets/atomic_file.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/oriented_cloud.h"
-#include "fit/fit_report.h"
-#include "fit/patch_fitter.h"
-#include "fit/shape_starts.h"
-#include "fit/tree_covariance.h"
-#include "fit/tree_fitter.h"
-#include "model/model_json.h"
+#include "datasets/io/atomic_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "fit/common/fit_report.h"
+#include "fit/bernstein/patch_fitter.h"
+#include "fit/tree/shape_starts.h"
+#include "fit/tree/tree_covariance.h"
+#include "fit/tree/tree_fitter.h"
+#include "model/file/model_json.h"
 
 namespace implicitfit {
 namespace {
@@ -107,7 +107,7 @@ void AddTreeFitFigures(const TreeFitResult& r, const Model& start,
                        nlohmann::json* report) {
   report->update(r.ToJson(normals));
   // Standard deviations at the optimum from the inliers (|f / |grad f|| < 3 sigma), as the
-  // primitives' (fit/tree_covariance.h).
+  // primitives' (fit/tree/tree_covariance.h).
   std::vector<Eigen::Vector3d> inliers;
   for (const Eigen::Vector3d& x : points) {
     double f;

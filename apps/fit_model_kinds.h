@@ -1,11 +1,11 @@
 // The fits of `implicitfit fit` beyond single primitives:
-//   --init MODEL.json      every free parameter of a model tree (fit/tree_fitter.h)
+//   --init MODEL.json      every free parameter of a model tree (fit/tree/tree_fitter.h)
 //   --model quadric-patch | cubic-patch [--degree k] [--convex] [--tetrahedron 12 numbers]
-//                          a Bernstein patch (fit/patch_fitter.h)
+//                          a Bernstein patch (fit/bernstein/patch_fitter.h)
 //   --model box | paraboloid | capsule
-//                          a robust start (fit/shape_starts.h), then the tree fitter
+//                          a robust start (fit/tree/shape_starts.h), then the tree fitter
 //   --model partition --grid AxBxC [--child plane|quadric]
-//                          the sparse linear start (fit/partition_start.h), then the tree fitter
+//                          the sparse linear start (fit/tree/partition_start.h), then the tree fitter
 // Each reads the cloud, fits, writes the report (when asked) and, on success, the model file;
 // returns the exit code (0 success, 1 the fit failed or the constraint cannot be met).
 #pragma once
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/tree_fitter.h"
+#include "fit/tree/tree_fitter.h"
 #include "model/model.h"
 
 namespace implicitfit {
@@ -69,24 +69,24 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request);
 ModelKindFit FitMeshCloud(const ModelFitRequest& request);
 
 bool IsPatchKind(const std::string& kind);
-// box, paraboloid, capsule: a robust start (fit/shape_starts.h), then the tree fitter; the
+// box, paraboloid, capsule: a robust start (fit/tree/shape_starts.h), then the tree fitter; the
 // report is the --init one plus "kind" and the start's parameters ("start").
 bool IsShapeKind(const std::string& kind);
 // The report fields of a tree fit started from `start`: the result's ToJson (success, message,
 // points, inliers, rms_distance, sigma, mean_normal_angle_deg, iterations, seconds, normals,
 // termination, "parameters"), and per parameter name its standard deviation at the optimum from the inliers
-// ("standard_deviations", fit/tree_covariance.h) and start value ("start").
+// ("standard_deviations", fit/tree/tree_covariance.h) and start value ("start").
 void AddTreeFitFigures(const TreeFitResult& r, const Model& start,
                        const std::vector<Eigen::Vector3d>& points, const std::string& normals,
                        nlohmann::json* report);
 // --model partition --grid AxBxC [--child plane|quadric]: the linear start of
-// fit/partition_start.h, then the tree fitter (apps/fit_partition_kind.cc).
+// fit/tree/partition_start.h, then the tree fitter (apps/fit_partition_kind.cc).
 int RunPartitionFit(const ModelFitRequest& request);
 int RunShapeFit(const ModelFitRequest& request, unsigned seed);
 int RunTreeFit(const ModelFitRequest& request);
 int RunPatchFit(const ModelFitRequest& request);
 // --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1] [--convex]: a
-// Bernstein mesh (fit/bernstein_mesh_fitter.h), apps/fit_mesh_kind.cc.
+// Bernstein mesh (fit/bernstein/bernstein_mesh_fitter.h), apps/fit_mesh_kind.cc.
 bool IsMeshKind(const std::string& kind);
 int RunMeshFit(const ModelFitRequest& request);
 

@@ -1,5 +1,5 @@
 // implicitfit fit CLOUD --model partition --grid AxBxC [--child plane|quadric|quadric-patch] --out
-// M.json: the one sparse least-squares start (fit/partition_start.h), then the tree fitter; the
+// M.json: the one sparse least-squares start (fit/tree/partition_start.h), then the tree fitter; the
 // report is the shape kinds' (AddTreeFitFigures) plus the grid, the child and the linear start's
 // RMS.
 #include <cstdio>
@@ -7,12 +7,12 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/fit_model_kinds.h"
-#include "datasets/atomic_file.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/oriented_cloud.h"
-#include "fit/partition_start.h"
-#include "model/model_json.h"
+#include "datasets/io/atomic_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "fit/tree/partition_start.h"
+#include "model/file/model_json.h"
 
 namespace implicitfit {
 namespace {

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "apps/command.h"
-#include "datasets/io_error.h"
-#include "model/model_json.h"
+#include "datasets/io/io_error.h"
+#include "model/file/model_json.h"
 
 #ifndef IMPLICITFIT_VERSION
 #define IMPLICITFIT_VERSION "unknown"

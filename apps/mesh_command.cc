@@ -1,12 +1,12 @@
 // implicitfit mesh MODEL.json --out MESH.ply [--box xmin,ymin,zmin,xmax,ymax,zmax] [--cell h]
-// A triangle mesh of the model's zero set with normals from grad f (datasets/model_mesher.h).
+// A triangle mesh of the model's zero set with normals from grad f (datasets/meshing/model_mesher.h).
 #include <cmath>
 #include <iostream>
 
 #include "apps/command.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/model_mesher.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/meshing/model_mesher.h"
 
 namespace implicitfit {
 

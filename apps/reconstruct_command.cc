@@ -1,18 +1,18 @@
 // implicitfit reconstruct CLOUD --out MODEL.json [--scene SCENE.json] [--mesh MESH.ply]
 //                         [--report R.json] [--seed s]
-// A solid model of the scan (fit/solid_reconstruction.h) from the primitives of a scene file
-// (datasets/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
+// A solid model of the scan (fit/reconstruct/solid_reconstruction.h) from the primitives of a scene file
+// (datasets/io/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
 // with its defaults and the same seed (apps/reconstruct_job.h).
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
 #include "apps/reconstruct_job.h"
-#include "datasets/atomic_file.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/model_mesher.h"
-#include "model/model_json.h"
+#include "datasets/io/atomic_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/meshing/model_mesher.h"
+#include "model/file/model_json.h"
 
 namespace implicitfit {
 namespace {

@@ -1,9 +1,9 @@
 #include "apps/reconstruct_job.h"
 
 #include "apps/detect_job.h"
-#include "datasets/io_error.h"
-#include "datasets/oriented_cloud.h"
-#include "datasets/scene_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "datasets/io/scene_file.h"
 
 namespace implicitfit {
 namespace {
@@ -46,7 +46,7 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
                         {"offset", p.offset},
                         {"measured", false}});
   }
-  // Coaxial cylinders bounding a concave fillet (fit/fillet_separators.h).
+  // Coaxial cylinders bounding a concave fillet (fit/reconstruct/fillet_separators.h).
   j["separator_cylinders"] = nlohmann::json::array();
   for (const AddedCylinder& c : r.separator_cylinders)
     j["separator_cylinders"].push_back({{"name", c.name},

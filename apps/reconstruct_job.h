@@ -1,20 +1,20 @@
 // The solid reconstruction of one cloud file, shared by `reconstruct` and `batch --model solid`:
-// read the cloud with oriented normals (datasets/oriented_cloud.h), take the primitives of a
+// read the cloud with oriented normals (datasets/normals/oriented_cloud.h), take the primitives of a
 // scene file or, without one, of `detect` run on the cloud with its defaults and the given seed
-// (apps/detect_job.h), and reconstruct the solid (fit/solid_reconstruction.h). The report:
+// (apps/detect_job.h), and reconstruct the solid (fit/reconstruct/solid_reconstruction.h). The report:
 //   {"success", "message", "points", "normals", "expression", "bounded", "rms_distance", "sigma",
 //    "inliers", "normal_sign_agreement", "unassigned", "seconds", "primitives": [{"name",
 //    "side", "points"}], "blends": [{"node", "type", "delta", "epsilon", "standard_deviations",
 //    "crease_angle_deg", "fillet_radius", "fillet_radius_standard_deviation",
 //    "transition_points"}], "closures": [{"name", "normal", "offset", "measured": false}],
-//    "separators": [same]} (fit/solid_bounding.h: planes no data lie on)
+//    "separators": [same]} (fit/reconstruct/solid_bounding.h: planes no data lie on)
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "datasets/point_cloud.h"
-#include "fit/solid_reconstruction.h"
+#include "datasets/clouds/point_cloud.h"
+#include "fit/reconstruct/solid_reconstruction.h"
 
 namespace implicitfit {
 

@@ -1,14 +1,14 @@
 // implicitfit sample MODEL.json --count N [--noise s] [--outliers f] [--seed s]
 //                    [--view x,y,z --view-angle deg] --out CLOUD.xyz|CLOUD.ply
-// Oriented points on the model's zero set with known truth (datasets/model_sampler.h).
+// Oriented points on the model's zero set with known truth (datasets/generators/model_sampler.h).
 #include <iostream>
 
 #include "apps/command.h"
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/model_sampler.h"
-#include "datasets/ply_writer.h"
-#include "datasets/xyz_writer.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/generators/model_sampler.h"
+#include "datasets/clouds/ply_writer.h"
+#include "datasets/clouds/xyz_writer.h"
 
 namespace implicitfit {
 

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "datasets/model_mesher.h"
+#include "datasets/meshing/model_mesher.h"
 
 namespace implicitfit_bench {
 

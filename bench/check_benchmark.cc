@@ -1,4 +1,4 @@
-// Convexity certificates per second (model/convexity_certificate.h) for degree 2 (one A^mu)
+// Convexity certificates per second (model/certificates/convexity_certificate.h) for degree 2 (one A^mu)
 // and degree 3 (four A^mu), on a pool of random patches, a mix of convex and not (the
 // certificate's cost does not depend on the verdict). One thread: the figure is per core.
 #include <benchmark/benchmark.h>
@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "model/bernstein_patch.h"
-#include "model/convexity_certificate.h"
+#include "model/bernstein/bernstein_patch.h"
+#include "model/certificates/convexity_certificate.h"
 
 namespace {
 

@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "fit/primitive_fitter.h"
-#include "fit/primitive_tangent.h"
+#include "fit/primitive/primitive_fitter.h"
+#include "fit/metrology/primitive_tangent.h"
 #include "support/cmm_reference.h"
 
 namespace {

@@ -15,10 +15,10 @@
 #include <random>
 #include <vector>
 
-#include "model/convexity_certificate.h"
-#include "model/patch_certificates.h"
-#include "model/tangent_plane_test.h"
-#include "model/tree_certificate.h"
+#include "model/certificates/convexity_certificate.h"
+#include "model/certificates/patch_certificates.h"
+#include "model/certificates/tangent_plane_test.h"
+#include "model/certificates/tree_certificate.h"
 #include "support/random_patches.h"
 
 namespace {

@@ -3,9 +3,9 @@
 //   estimated as a user's run would (PCA + MST orientation) and with normals from the ground-
 //   truth surfaces (gradients of the implicit equations; tori: grad of the torus fitted to their
 //   labelled points), CGAL's labelled icosahedron, and generated scenes
-//   (datasets/scene_generator.h: six primitives, noise 0.005, 10% outliers).
+//   (datasets/generators/scene_generator.h: six primitives, noise 0.005, 10% outliers).
 // Per cloud and method: recall, precision, mean IoU, kind accuracy, coverage
-// (fit/segmentation_metrics.h, primitives with >= 1% of the points), parameter error (RMS of the
+// (fit/detect/segmentation_metrics.h, primitives with >= 1% of the points), parameter error (RMS of the
 // detected f over each recovered ground-truth primitive's points, over the bbox diagonal;
 // implicitfit only: the CGAL wrapper does not export shapes) and time (detection only: both get
 // the same points and normals). CGAL runs with its defaults and with the best (recall, then
@@ -24,15 +24,15 @@
 #include <vector>
 
 #include "bench/cgal_shape_detection.h"
-#include "datasets/cloud_file.h"
-#include "datasets/cloud_file_info.h"
-#include "datasets/ground_truth.h"
-#include "datasets/neighbourhoods.h"
-#include "datasets/normal_estimation.h"
-#include "datasets/scene_generator.h"
-#include "fit/primitive_detector.h"
-#include "fit/primitive_fitter.h"
-#include "fit/segmentation_metrics.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/clouds/cloud_file_info.h"
+#include "datasets/generators/ground_truth.h"
+#include "datasets/normals/neighbourhoods.h"
+#include "datasets/normals/normal_estimation.h"
+#include "datasets/generators/scene_generator.h"
+#include "fit/detect/primitive_detector.h"
+#include "fit/primitive/primitive_fitter.h"
+#include "fit/detect/segmentation_metrics.h"
 
 using namespace implicitfit;
 

@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "datasets/oriented_cloud.h"
-#include "fit/primitive_fitter.h"
-#include "model/model_json.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "fit/primitive/primitive_fitter.h"
+#include "model/file/model_json.h"
 
 int main(int argc, char** argv) {
   using namespace implicitfit;

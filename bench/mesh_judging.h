@@ -17,7 +17,7 @@
 #include <functional>
 #include <vector>
 
-#include "datasets/model_mesher.h"
+#include "datasets/meshing/model_mesher.h"
 #include "model/model.h"
 
 namespace bench {

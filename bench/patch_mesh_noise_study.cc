@@ -1,4 +1,4 @@
-// How far the patch-mesh fit (fit/bernstein_mesh_fitter.h) lies from the truth on the generated
+// How far the patch-mesh fit (fit/bernstein/bernstein_mesh_fitter.h) lies from the truth on the generated
 // clouds of bench/surface_comparison (same shapes, same sampling, same noise), without meshing:
 // the fitted zero set's signed distance to each of 20 000 noise-free truth points, measured along
 // the truth normal by Newton steps on t -> f(x + t n). Prints the fit's RMS of f/|grad f| (against
@@ -18,9 +18,9 @@
 #include <cstring>
 #include <string>
 
-#include "datasets/model_sampler.h"
-#include "fit/bernstein_mesh_fitter.h"
-#include "model/bernstein_patch.h"
+#include "datasets/generators/model_sampler.h"
+#include "fit/bernstein/bernstein_mesh_fitter.h"
+#include "model/bernstein/bernstein_patch.h"
 
 namespace {
 

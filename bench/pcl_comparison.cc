@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "datasets/model_sampler.h"
-#include "fit/primitive_fitter.h"
+#include "datasets/generators/model_sampler.h"
+#include "fit/primitive/primitive_fitter.h"
 
 namespace {
 

@@ -1,13 +1,13 @@
 // implicitfit reconstruct + mesh vs Poisson surface reconstruction (PCL's pcl::Poisson and
 // CGAL 5.5's poisson_surface_reconstruction_delaunay) on the same clouds, in one run (issue 14).
 // Clouds:
-//   generated solids (datasets/generated_solids.h) sampled with noise 0.2% of their size
+//   generated solids (datasets/generators/generated_solids.h) sampled with noise 0.2% of their size
 //     (--outliers adds uniform outliers); truth: the model (first-order distance |f| / |grad f|,
 //     normal grad f / |grad f|); truth samples: noise-free samples of it;
 //   the Fit4CAD parts (../shared/data/fit4cad, GPL-3, read only; no normals: estimated and
-//     oriented by datasets/normal_estimation.h); truth: each labelled point's ground-truth
+//     oriented by datasets/normals/normal_estimation.h); truth: each labelled point's ground-truth
 //     surface (planes and quadrics: the implicit equation; tori: the exact torus distance, the
-//     torus read from the parametric file by datasets/fit4cad_torus.h);
+//     torus read from the parametric file by datasets/generators/fit4cad_torus.h);
 //   CGAL's box-on-ground scan (exact outward normals, no labels); truth: the tangent plane of
 //     each point (its faces are planar).
 //   For the real clouds, the distance of x to the truth is the least, over its 16 nearest truth
@@ -22,7 +22,7 @@
 // as detect would give) or from `detect` (the box, unlabelled), then reconstruct and mesh (256
 // cells on the longest side of the cloud's box enlarged by 10%, --cells: the finest grid of
 // PCL's Poisson at depth 8). When reconstruct closed an open scan, a second row judges the mesh
-// without its faces on closure planes (fit/solid_bounding.h: not measured). Figures: Chamfer
+// without its faces on closure planes (fit/reconstruct/solid_bounding.h: not measured). Figures: Chamfer
 // distance (mean of the two directed mean distances: mesh -> truth at 50 000 area-uniform mesh
 // points, truth -> mesh by exact point-triangle distance from the truth samples), Hausdorff
 // distance (largest of both), normal consistency (mean of n_face . n_truth, signed: 1 is perfect,
@@ -57,14 +57,14 @@
 #ifdef IMPLICITFIT_HAVE_CGAL_POISSON
 #include "bench/cgal_poisson.h"
 #endif
-#include "datasets/cloud_file.h"
-#include "datasets/fit4cad_torus.h"
-#include "datasets/generated_solids.h"
-#include "datasets/ground_truth.h"
-#include "datasets/model_mesher.h"
-#include "datasets/model_sampler.h"
-#include "datasets/normal_estimation.h"
-#include "fit/solid_reconstruction.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/generators/fit4cad_torus.h"
+#include "datasets/generators/generated_solids.h"
+#include "datasets/generators/ground_truth.h"
+#include "datasets/meshing/model_mesher.h"
+#include "datasets/generators/model_sampler.h"
+#include "datasets/normals/normal_estimation.h"
+#include "fit/reconstruct/solid_reconstruction.h"
 
 namespace {
 
@@ -288,7 +288,7 @@ std::function<double(const Vec&, Vec*)> TangentPlane(const Vec& p, const Vec& n)
   };
 }
 
-// Fit4CAD equations (datasets/ground_truth.h): plane [a b c d], quadric of 10 numbers.
+// Fit4CAD equations (datasets/generators/ground_truth.h): plane [a b c d], quadric of 10 numbers.
 std::function<double(const Vec&, Vec*)> Fit4CadSurface(const std::vector<double>& q) {
   if (q.size() == 4)
     return [q](const Vec& x, Vec* g) {

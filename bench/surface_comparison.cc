@@ -11,7 +11,7 @@
 // resident memory of the method
 // (each method runs in its own forked process: VmHWM of that process after the reconstruction, the
 // parent's few MB included). Patch-mesh rows use the fitter's defaults
-// (fit/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
+// (fit/bernstein/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
 // side / 128; on the non-convex scans further rows fit at degrees 4 and 5 (--scan-degree), on
 // convex inputs a second row fits with --convex and reports the certificate.
 //   build/bench/surface_comparison [--points 20000] [--seed 1] [--cells n] [--degree k]
@@ -36,10 +36,10 @@
 #include <vector>
 
 #include "bench/mesh_judging.h"
-#include "datasets/cloud_file.h"
-#include "datasets/model_mesher.h"
-#include "datasets/model_sampler.h"
-#include "fit/bernstein_mesh_fitter.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/meshing/model_mesher.h"
+#include "datasets/generators/model_sampler.h"
+#include "fit/bernstein/bernstein_mesh_fitter.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "model/dual3.h"
-#include "model/primitive_kinds.h"
+#include "model/primitives/primitive_kinds.h"
 
 namespace implicitfit {
 namespace {
@@ -15,7 +15,7 @@ struct TypeInfo {
   std::vector<ParameterField> fields;
 };
 
-// Primitives from their table (model/primitive_kinds.h), then every other node type.
+// Primitives from their table (model/primitives/primitive_kinds.h), then every other node type.
 const std::vector<TypeInfo>& Types() {
   static const std::vector<TypeInfo> types = [] {
     std::vector<TypeInfo> t;

@@ -9,7 +9,7 @@
 // Operators with more than two children fold left to right: op(op(c0, c1), c2) ...
 // Operator parameters: [delta, epsilon] with 0 < epsilon <= delta; order 0 is sharp min/max.
 // With smoothing kConvex the blend width is w = delta and epsilon is unused (kept = delta).
-// Bernstein patches (model/bernstein_patch.h): the node holds the degree k and the tetrahedron
+// Bernstein patches (model/bernstein/bernstein_patch.h): the node holds the degree k and the tetrahedron
 // (structure); its parameters are the (k+1)(k+2)(k+3)/6 control points, field "control_points".
 #pragma once
 
@@ -17,25 +17,25 @@
 #include <string>
 #include <vector>
 
-#include "model/bernstein_mesh.h"
-#include "model/bernstein_patch.h"
-#include "model/blobs.h"
-#include "model/box.h"
-#include "model/coleman_features.h"
-#include "model/cone.h"
-#include "model/convex_smooth_ops.h"
-#include "model/cylinder.h"
-#include "model/ellipsoid.h"
-#include "model/morph.h"
-#include "model/paraboloid.h"
-#include "model/partition.h"
-#include "model/partition_sequence.h"
-#include "model/plane.h"
-#include "model/quadric.h"
-#include "model/skeleton_offset.h"
-#include "model/smooth_ops.h"
-#include "model/sphere.h"
-#include "model/torus.h"
+#include "model/bernstein/bernstein_mesh.h"
+#include "model/bernstein/bernstein_patch.h"
+#include "model/primitives/blobs.h"
+#include "model/primitives/box.h"
+#include "model/primitives/coleman_features.h"
+#include "model/primitives/cone.h"
+#include "model/blends/convex_smooth_ops.h"
+#include "model/primitives/cylinder.h"
+#include "model/primitives/ellipsoid.h"
+#include "model/blends/morph.h"
+#include "model/primitives/paraboloid.h"
+#include "model/blends/partition.h"
+#include "model/blends/partition_sequence.h"
+#include "model/primitives/plane.h"
+#include "model/primitives/quadric.h"
+#include "model/primitives/skeleton_offset.h"
+#include "model/blends/smooth_ops.h"
+#include "model/primitives/sphere.h"
+#include "model/primitives/torus.h"
 
 namespace implicitfit {
 
@@ -51,16 +51,16 @@ enum class NodeType {
   kUnion,
   kIntersection,
   kDifference,
-  kBox,                // exact box SDF (model/box.h)
-  kComplement,         // -f of its one child (model/morph.h)
-  kMorph,              // t f_A + (1 - t) f_B of its two children (model/morph.h)
-  kParaboloid,         // vertex, axis, curvature (model/paraboloid.h)
-  kBlobs,              // Blinn blobs and compact kernels (model/blobs.h)
-  kSkeletonOffset,     // offsets of points, segments, polylines (model/skeleton_offset.h)
-  kPartition,          // soft space partition on a grid (model/partition.h)
-  kBernsteinMesh,      // model/bernstein_mesh.h: degree, grid, continuity; control_points
-  kPartitionSequence,  // soft partition by separator planes (model/partition_sequence.h)
-  kColemanFeatures,    // Coleman's features on a core distance (model/coleman_features.h)
+  kBox,                // exact box SDF (model/primitives/box.h)
+  kComplement,         // -f of its one child (model/blends/morph.h)
+  kMorph,              // t f_A + (1 - t) f_B of its two children (model/blends/morph.h)
+  kParaboloid,         // vertex, axis, curvature (model/primitives/paraboloid.h)
+  kBlobs,              // Blinn blobs and compact kernels (model/primitives/blobs.h)
+  kSkeletonOffset,     // offsets of points, segments, polylines (model/primitives/skeleton_offset.h)
+  kPartition,          // soft space partition on a grid (model/blends/partition.h)
+  kBernsteinMesh,      // model/bernstein/bernstein_mesh.h: degree, grid, continuity; control_points
+  kPartitionSequence,  // soft partition by separator planes (model/blends/partition_sequence.h)
+  kColemanFeatures,    // Coleman's features on a core distance (model/primitives/coleman_features.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -77,7 +77,7 @@ bool IsComposite(NodeType type);
 // skeleton -3 per point), ParameterFieldsOf(node) multiplies by the node's element count.
 // What a field means, so that code common to every primitive (JSON checks, recentring,
 // fitting bounds and manifolds, degrees of freedom) reads it from the table instead of from
-// the field's name (model/primitive_kinds.h):
+// the field's name (model/primitives/primitive_kinds.h):
 enum class FieldRole {
   kPlain,           // any finite numbers
   kPosition,        // a point: moves with the model when it is translated
@@ -99,8 +99,8 @@ const std::vector<ParameterField>& ParameterFieldsOf(NodeType type);
 int NumParametersOf(NodeType type);
 
 // The smooth max of a union / intersection / difference node ("smoothing" in JSON):
-// Li & Phillips' S_max (delta, epsilon; model/smooth_ops.h), or the convexity-preserving
-// S^c_max of model/convex_smooth_ops.h (width w = delta; the epsilon slot is unused).
+// Li & Phillips' S_max (delta, epsilon; model/blends/smooth_ops.h), or the convexity-preserving
+// S^c_max of model/blends/convex_smooth_ops.h (width w = delta; the epsilon slot is unused).
 enum class BlendSmoothing { kLiPhillips, kConvex };
 
 struct ModelNode {
@@ -159,24 +159,24 @@ class Model {
   // parameters (ParameterFieldsOf); throws std::invalid_argument on a wrong count of either.
   int AddComposite(NodeType type, std::vector<int> children, const std::vector<double>& parameters,
                    std::string name = "");
-  // Blobs (model/blobs.h): m = weights.size() >= 1 centres (3 m numbers), weights, widths
+  // Blobs (model/primitives/blobs.h): m = weights.size() >= 1 centres (3 m numbers), weights, widths
   // (> 0), threshold; order n of H_n for BlobKernel::kUnitStep (1..14). Throws
   // std::invalid_argument on inconsistent sizes.
   int AddBlobs(BlobKernel kernel, int order, const std::vector<double>& centers,
                const std::vector<double>& weights, const std::vector<double>& widths,
                double threshold, std::string name = "");
-  // Skeleton offset (model/skeleton_offset.h): points as 3 numbers each (segments: two end
+  // Skeleton offset (model/primitives/skeleton_offset.h): points as 3 numbers each (segments: two end
   // points each; polyline: >= 2 vertices), radius.
   int AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
                         std::string name = "");
   // NOTES.md CO-2's form: a skeleton_offset in field mode with Coleman's features (7 numbers
   // each: point 3, width, depth, radius, flare; m >= 1), core radius R_C = `radius` > 0:
-  // f = 1/2 - max(i, max_f g_f) of model/coleman_features.h over the skeleton's distance.
+  // f = 1/2 - max(i, max_f g_f) of model/primitives/coleman_features.h over the skeleton's distance.
   // Parameters [skeleton points, radius, features]. Throws std::invalid_argument otherwise.
   int AddSkeletonOffsetWithFeatures(SkeletonKind kind, const std::vector<double>& points,
                                     double radius, const std::vector<double>& features,
                                     std::string name = "");
-  // Grid partition (model/partition.h): 3 strictly increasing cut lists, every finite cell
+  // Grid partition (model/blends/partition.h): 3 strictly increasing cut lists, every finite cell
   // >= 2 epsilon wide, (a+1)(b+1)(c+1) children (x fastest), 0 <= order <= 14; throws
   // std::invalid_argument otherwise.
   int AddPartition(std::vector<std::vector<double>> cuts, double epsilon, int order,
@@ -184,14 +184,14 @@ class Model {
   // A Bernstein mesh of degree k >= 1 over the Kuhn split of `grid`, with
   // 6 * cubes * NumBernsteinControlPoints(k) control points; continuity is 0 or 1 (declared,
   // checked by `check`). Throws std::invalid_argument otherwise.
-  // Sequential partition (model/partition_sequence.h): m >= 1 plane nodes as separators, m + 1
+  // Sequential partition (model/blends/partition_sequence.h): m >= 1 plane nodes as separators, m + 1
   // cell children, 0 <= order <= 14, every cell >= 2 epsilon wide; throws
   // std::invalid_argument otherwise. node.count = m; node.children = separators, then cells.
   int AddPartitionSequence(const std::vector<int>& separators, double epsilon, int order,
                            const std::vector<int>& children, std::string name = "");
   // The separators of a partition_sequence node as unit-normal planes (stored parameters).
   std::vector<SeparatorPlane> SeparatorsOf(const ModelNode& node) const;
-  // Coleman features (model/coleman_features.h) over the core child `core` (a signed
+  // Coleman features (model/primitives/coleman_features.h) over the core child `core` (a signed
   // distance): core radius R_C > 0, features as 7 numbers each (point 3, width, depth, radius,
   // flare), m >= 1. Throws std::invalid_argument otherwise.
   int AddColemanFeatures(int core, double core_radius, const std::vector<double>& features,
@@ -305,7 +305,7 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
       const int features = SkeletonFeatureCount(node);
       if (features == 0) return SkeletonOffsetEvaluator::Evaluate(kind, node.count, p, x);
-      // NOTES.md CO-2: Coleman's features in field mode, R_C = radius (model/coleman_features.h)
+      // NOTES.md CO-2: Coleman's features in field mode, R_C = radius (model/primitives/coleman_features.h)
       auto closest = [&](const T* y, T* c, T* n) {
         SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
         ColemanFeatures::DirectionFrom(c, y, n);

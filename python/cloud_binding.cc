@@ -1,6 +1,6 @@
 // implicitfit.read_cloud, estimate_normals, sample, check: clouds and certificates
-// (datasets/oriented_cloud.h, datasets/normal_estimation.h, datasets/model_sampler.h,
-// model/convexity_report.h) with NumPy arrays in and out.
+// (datasets/normals/oriented_cloud.h, datasets/normals/normal_estimation.h, datasets/generators/model_sampler.h,
+// model/certificates/convexity_report.h) with NumPy arrays in and out.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <string>
 
-#include "datasets/model_sampler.h"
-#include "datasets/normal_estimation.h"
-#include "datasets/oriented_cloud.h"
-#include "model/convexity_report.h"
+#include "datasets/generators/model_sampler.h"
+#include "datasets/normals/normal_estimation.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "model/certificates/convexity_report.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
 #include "python/json_to_python.h"

@@ -1,13 +1,13 @@
 // implicitfit.fit, fit_tree, fit_patch: the library's fitters (fit/*.h) on NumPy arrays, with
-// the same reports as `implicitfit fit --report` (fit/fit_report.h). The arrays are copied once
+// the same reports as `implicitfit fit --report` (fit/common/fit_report.h). The arrays are copied once
 // into the library's vectors, then the GIL is released for the whole fit (normal estimation
 // included), so Python threads can run fits in parallel.
 // Normals: given ones are used as they are (scaled to unit length if needed); None estimates and
-// orients them as the command line does for a file without normals (datasets/normal_estimation.h),
+// orients them as the command line does for a file without normals (datasets/normals/normal_estimation.h),
 // so fit(*read_cloud(path)) fits exactly what `implicitfit fit path` fits; for `fit`, estimated
-// normals the neighbourhood fits do not trust (datasets/normal_trust.h: a few probed points) are
+// normals the neighbourhood fits do not trust (datasets/normals/normal_trust.h: a few probed points) are
 // dropped and the fit hypothesises from points alone, as on the command line.
-// estimator= (fit/estimator.h) as `fit --estimator`.
+// estimator= (fit/primitive/estimator.h) as `fit --estimator`.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -16,13 +16,13 @@
 #include <optional>
 #include <string>
 
-#include "datasets/normal_estimation.h"
-#include "datasets/normal_trust.h"
-#include "fit/fit_report.h"
-#include "fit/patch_fitter.h"
-#include "fit/primitive_fitter.h"
-#include "fit/primitive_tangent.h"
-#include "fit/tree_fitter.h"
+#include "datasets/normals/normal_estimation.h"
+#include "datasets/normals/normal_trust.h"
+#include "fit/common/fit_report.h"
+#include "fit/bernstein/patch_fitter.h"
+#include "fit/primitive/primitive_fitter.h"
+#include "fit/metrology/primitive_tangent.h"
+#include "fit/tree/tree_fitter.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
 #include "python/json_to_python.h"
@@ -94,7 +94,7 @@ py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degr
 }
 
 // As EstimateNormalsIfMissing, then the command line's trust rule for primitive fits
-// (datasets/normal_trust.h: ReadCloudForPrimitiveFit).
+// (datasets/normals/normal_trust.h: ReadCloudForPrimitiveFit).
 void EstimateTrustedNormalsIfMissing(FitInput* in) {
   if (!in->estimate) return;
   EstimateNormalsIfMissing(in);
@@ -144,7 +144,7 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
                           ": unknown (robust, least-squares, minimum-zone)");
   std::string error;
   if (!options.IsValid(&error)) throw py::value_error(error);
-  // Without normals a fit needs the free parameter count plus one points (fit/point_hypotheses.h).
+  // Without normals a fit needs the free parameter count plus one points (fit/metrology/point_hypotheses.h).
   FitInput in =
       ReadFitInput(points, normals,
                    normals.is_none() ? static_cast<size_t>(FreeParameterCount(options.kind)) + 1

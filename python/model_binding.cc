@@ -1,5 +1,5 @@
-// implicitfit.Model: a model tree (model/model.h) with its JSON form (model/model_json.h),
-// files (datasets/model_file.h) and evaluation on NumPy arrays.
+// implicitfit.Model: a model tree (model/model.h) with its JSON form (model/file/model_json.h),
+// files (datasets/io/model_file.h) and evaluation on NumPy arrays.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "datasets/model_file.h"
+#include "datasets/io/model_file.h"
 #include "model/model.h"
-#include "model/model_json.h"
+#include "model/file/model_json.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
 

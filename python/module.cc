@@ -6,8 +6,8 @@
 #include <glog/logging.h>
 #include <pybind11/pybind11.h>
 
-#include "datasets/io_error.h"
-#include "model/model_json.h"
+#include "datasets/io/io_error.h"
+#include "model/file/model_json.h"
 #include "python/bindings.h"
 
 #ifndef IMPLICITFIT_VERSION

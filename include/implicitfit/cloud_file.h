@@ -3,8 +3,8 @@
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
-#include "datasets/cloud_file.h"
-#include "datasets/io_error.h"
-#include "datasets/ply_writer.h"
-#include "datasets/point_cloud.h"
-#include "datasets/xyz_writer.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/io/io_error.h"
+#include "datasets/clouds/ply_writer.h"
+#include "datasets/clouds/point_cloud.h"
+#include "datasets/clouds/xyz_writer.h"

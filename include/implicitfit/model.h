@@ -7,7 +7,7 @@
 // names and layout may change without notice: include these, never those.
 #pragma once
 
-#include "model/bernstein_conversion.h"
-#include "model/bernstein_patch.h"
-#include "model/convexity_certificate.h"
+#include "model/bernstein/bernstein_conversion.h"
+#include "model/bernstein/bernstein_patch.h"
+#include "model/certificates/convexity_certificate.h"
 #include "model/model.h"

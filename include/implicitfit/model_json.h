@@ -4,6 +4,6 @@
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "model/model_json.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "model/file/model_json.h"

@@ -3,4 +3,4 @@
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
-#include "datasets/normal_estimation.h"
+#include "datasets/normals/normal_estimation.h"

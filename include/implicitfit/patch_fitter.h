@@ -3,4 +3,4 @@
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
-#include "fit/patch_fitter.h"
+#include "fit/bernstein/patch_fitter.h"

@@ -3,4 +3,4 @@
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
-#include "fit/primitive_fitter.h"
+#include "fit/primitive/primitive_fitter.h"

@@ -3,4 +3,4 @@
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
-#include "fit/tree_fitter.h"
+#include "fit/tree/tree_fitter.h"

@@ -116,7 +116,7 @@ TEST(CheckCommand, JsonHasExactlyTheContractShape) {
 
 // A quadric x^T Q x + 2 b.x + c has Hessian 2Q = k(k-1) E^-T A E^-1, so A^mu = 2/(k(k-1)) E^T Q E.
 // Its degree-2 control points are b_ij = X_i^T G X_j (homogeneous vertices; derived here
-// independently of model/bernstein_conversion).
+// independently of model/bernstein/bernstein_conversion).
 TEST(CheckCommand, QuadricPatchesGetTheirMatrixVerdict) {
   const std::string dir = testsupport::ScratchDir("check_quadric");
   std::mt19937 rng(73);

@@ -8,9 +8,9 @@
 #include <random>
 #include <string>
 
-#include "datasets/scene_file.h"
-#include "datasets/scene_generator.h"
-#include "datasets/xyz_writer.h"
+#include "datasets/io/scene_file.h"
+#include "datasets/generators/scene_generator.h"
+#include "datasets/clouds/xyz_writer.h"
 #include "support/run_command.h"
 
 namespace implicitfit {

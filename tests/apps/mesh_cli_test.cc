@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/bernstein_conversion.h"
-#include "model/bernstein_mesh.h"
+#include "model/bernstein/bernstein_conversion.h"
+#include "model/bernstein/bernstein_mesh.h"
 #include "support/run_command.h"
 
 namespace {

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <string>
 
-#include "datasets/cloud_file.h"
-#include "datasets/io_error.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/io/io_error.h"
 
 namespace implicitfit_fuzz {
 

@@ -10,10 +10,10 @@
 #include <cstdio>
 #include <string>
 
-#include "datasets/io_error.h"
-#include "datasets/model_file.h"
-#include "datasets/model_sampler.h"
-#include "model/model_json.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/generators/model_sampler.h"
+#include "model/file/model_json.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   static const std::string path = "/tmp/implicitfit_fuzz_" + std::to_string(::getpid()) + ".json";

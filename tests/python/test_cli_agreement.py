@@ -1,6 +1,6 @@
 """The module and the command line on the same files: bit-identical models for the same seed,
 the same reports (but the timing and where the normals came from), the same certificates and
-values. Both run the same library code (fit/fit_report.h, model/convexity_report.h)."""
+values. Both run the same library code (fit/common/fit_report.h, model/certificates/convexity_report.h)."""
 import json
 
 import numpy as np

@@ -55,7 +55,7 @@ inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
   s.origin = Eigen::Vector3d(100 + 50 * u01(rng), -200 + 50 * u01(rng), 30 + 50 * u01(rng));
   const double R = 5.0, ta = std::tan(CmmSet::kConeHalfAngle);
   // 2..4 circles; 3..4 for the cone (on two circles the cone's algebraic hypotheses from points
-  // are rank deficient: see fit/point_hypotheses.h)
+  // are rank deficient: see fit/metrology/point_hypotheses.h)
   const int circles = (kind == CmmKind::kCone ? 3 : 2) +
                       static_cast<int>(u01(rng) * (kind == CmmKind::kCone ? 2 : 3));
   const double span = (120 + 120 * u01(rng)) * M_PI / 180, start = 2 * M_PI * u01(rng);

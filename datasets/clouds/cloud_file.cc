@@ -1,0 +1,60 @@
+#include "datasets/clouds/cloud_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "datasets/io/io_error.h"
+#include "datasets/normals/normal_estimation.h"
+#include "datasets/clouds/xyz_reader.h"
+#ifdef IMPLICITFIT_HAVE_PCL
+#include "datasets/clouds/pcd_reader.h"
+#include "datasets/clouds/ply_reader.h"
+#endif
+
+namespace implicitfit {
+
+namespace {
+
+PointCloud ReadByExtension(const std::string& path, CloudFileInfo* info) {
+  const size_t dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == "xyz" || ext == "pwn" || ext == "txt") return ReadXyzFile(path, info);
+  if (ext == "xyzl") return ReadXyzFile(path, info, XyzColumns::kLabelled);
+#ifdef IMPLICITFIT_HAVE_PCL
+  if (ext == "ply") return ReadPlyFile(path, info);
+  if (ext == "pcd") return ReadPcdFile(path, info);
+  throw FileError(
+      path, "unsupported cloud format '." + ext + "' (supported: .xyz .pwn .txt .xyzl .ply .pcd)");
+#else
+  throw FileError(path,
+                  "unsupported cloud format '." + ext +
+                      "' (supported: .xyz .pwn .txt .xyzl; .ply and .pcd need a build with PCL)");
+#endif
+}
+
+}  // namespace
+
+PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info) {
+  CloudFileInfo local;
+  CloudFileInfo& out = info ? *info : local;
+  PointCloud cloud = ReadByExtension(path, &out);
+  if (out.invalid_normals.empty()) return cloud;
+  if (out.invalid_normals.size() == cloud.size()) {
+    cloud.normals.clear();  // nothing usable: the caller estimates them (normal_estimation.h)
+    return cloud;
+  }
+  try {
+    ReestimateNormalsAt(&cloud, out.invalid_normals);
+  } catch (const std::invalid_argument&) {
+    throw FileError(path,
+                    std::to_string(out.invalid_normals.size()) +
+                        " normals are NaN, infinite or zero-length and the cloud is too small "
+                        "to re-estimate them");
+  }
+  return cloud;
+}
+
+}  // namespace implicitfit

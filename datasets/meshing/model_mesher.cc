@@ -1,0 +1,317 @@
+#include "datasets/meshing/model_mesher.h"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFlyingEdges3D.h>
+#include <vtkIdList.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+#include "datasets/io/atomic_file.h"
+#include "datasets/generators/model_sampler.h"
+#include "datasets/meshing/sharp_features.h"
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+// The grid: values at origin + h (i, j, k), i fastest (VTK's point order).
+struct Grid {
+  Vec origin;
+  double h = 0.0;
+  int n[3] = {0, 0, 0};
+  std::vector<double> values;
+  long Index(int i, int j, int k) const {
+    return i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k);
+  }
+  Vec Point(int i, int j, int k) const { return origin + h * Vec(i, j, k); }
+};
+
+void FillGrid(const Model& model, int num_threads, Grid* grid) {
+  grid->values.assign(static_cast<size_t>(grid->n[0]) * grid->n[1] * grid->n[2], 0.0);
+  const int threads = std::max(
+      1, num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
+  const double tiny = 1e-12 * grid->h;
+  auto slab = [&](int t) {
+    for (int k = t; k < grid->n[2]; k += threads)
+      for (int j = 0; j < grid->n[1]; ++j)
+        for (int i = 0; i < grid->n[0]; ++i) {
+          double v = model.Value(grid->Point(i, j, k));
+          if (std::isnan(v)) v = grid->h;  // undefined counts as outside
+          if (v == 0.0) v = tiny;          // no vertex exactly on a grid node
+          grid->values[grid->Index(i, j, k)] = v;
+        }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(slab, t);
+  slab(0);
+  for (std::thread& th : pool) th.join();
+}
+
+// Root of f on the segment a + s (b - a), s in [0, 1], given fa < 0 <= fb or fa >= 0 > fb:
+// Illinois method (regula falsi that halves the retained end's value when it is kept twice).
+Vec RootOnEdge(const Model& model, const Vec& a, const Vec& b, double fa, double fb) {
+  double s0 = 0.0, s1 = 1.0, f0 = fa, f1 = fb;
+  int side = 0;
+  double s = 0.5;
+  for (int it = 0; it < 60; ++it) {
+    s = (s0 * f1 - s1 * f0) / (f1 - f0);
+    if (!(s > s0 && s < s1)) s = 0.5 * (s0 + s1);
+    const double fs = model.Value(a + s * (b - a));
+    if (fs == 0.0 || std::isnan(fs) || s1 - s0 < 1e-13) break;
+    if ((fs < 0) == (f0 < 0)) {
+      s0 = s;
+      f0 = fs;
+      if (side == -1) f1 *= 0.5;
+      side = -1;
+    } else {
+      s1 = s;
+      f1 = fs;
+      if (side == 1) f0 *= 0.5;
+      side = 1;
+    }
+  }
+  return a + s * (b - a);
+}
+
+}  // namespace
+
+void DefaultMeshBox(const Model& model, Vec* box_min, Vec* box_max) {
+  SamplingBox(model, box_min, box_max);
+  const Vec margin = 0.1 * (*box_max - *box_min);
+  *box_min -= margin;
+  *box_max += margin;
+}
+
+MeshResult MeshModel(const Model& model, const MeshOptions& options) {
+  MeshResult result;
+  Vec lo, hi;
+  if (options.has_box) {
+    lo = options.box_min;
+    hi = options.box_max;
+  } else {
+    DefaultMeshBox(model, &lo, &hi);
+  }
+  if (!lo.allFinite() || !hi.allFinite() || !((hi - lo).array() > 0).all())
+    throw std::invalid_argument("mesh box must have min < max on every axis");
+  const double longest = (hi - lo).maxCoeff();
+  const double h = options.cell > 0 ? options.cell : longest / 100.0;
+  if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("mesh cell must be > 0");
+  if (!options.has_box) {  // two more cells on every side: a closed surface stays off the faces
+    lo -= Vec::Constant(2 * h);
+    hi += Vec::Constant(2 * h);
+  }
+  Grid grid;
+  grid.origin = lo;
+  grid.h = h;
+  double points = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const double cells = std::ceil((hi[a] - lo[a]) / h - 1e-9);
+    points *= cells + 1;
+    if (points > static_cast<double>(options.max_grid_points))
+      throw std::invalid_argument("mesh grid too fine: more than " +
+                                  std::to_string(options.max_grid_points) +
+                                  " grid points (use a larger cell)");
+    grid.n[a] = static_cast<int>(cells) + 1;
+  }
+  result.box_min = lo;
+  result.box_max = lo + h * Vec(grid.n[0] - 1, grid.n[1] - 1, grid.n[2] - 1);
+  result.cell = h;
+  FillGrid(model, options.num_threads, &grid);
+
+  // Contour in index space (origin 0, spacing 1): VTK's points are float, so small numbers
+  // keep them precise enough to tell which grid edge each vertex lies on.
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(grid.n[0], grid.n[1], grid.n[2]);
+  image->SetOrigin(0, 0, 0);
+  image->SetSpacing(1, 1, 1);
+  vtkNew<vtkDoubleArray> scalars;
+  scalars->SetName("f");
+  scalars->SetNumberOfComponents(1);
+  scalars->SetArray(grid.values.data(), static_cast<vtkIdType>(grid.values.size()), 1);  // no copy
+  image->GetPointData()->SetScalars(scalars);
+  vtkNew<vtkFlyingEdges3D> contour;
+  contour->SetInputData(image);
+  contour->SetNumberOfContours(1);
+  contour->SetValue(0, 0.0);
+  contour->ComputeNormalsOff();
+  contour->ComputeGradientsOff();
+  contour->ComputeScalarsOff();
+  contour->InterpolateAttributesOff();
+  contour->Update();
+  vtkPolyData* poly = contour->GetOutput();
+
+  TriangleMesh& mesh = result.mesh;
+  const vtkIdType num_points = poly->GetNumberOfPoints();
+  mesh.vertices.resize(num_points);
+  // 3. Each vertex: find its grid edge (the edge from the nearest node whose linear
+  // interpolation lands on the vertex), then the root of f on that edge.
+  const int threads =
+      std::max(1, options.num_threads > 0 ? options.num_threads
+                                          : static_cast<int>(std::thread::hardware_concurrency()));
+  std::vector<double> abs_value(num_points, 0.0);
+  auto refine = [&](int t) {
+    double u[3];
+    for (vtkIdType v = t; v < num_points; v += threads) {
+      poly->GetPoint(v, u);
+      int node[3];
+      for (int a = 0; a < 3; ++a)
+        node[a] = std::clamp(static_cast<int>(std::lround(u[a])), 0, grid.n[a] - 1);
+      const double f_node = grid.values[grid.Index(node[0], node[1], node[2])];
+      double best = std::numeric_limits<double>::infinity();
+      int best_other[3] = {node[0], node[1], node[2]};
+      for (int a = 0; a < 3; ++a)
+        for (int step : {-1, 1}) {
+          int other[3] = {node[0], node[1], node[2]};
+          other[a] += step;
+          if (other[a] < 0 || other[a] >= grid.n[a]) continue;
+          const double f_other = grid.values[grid.Index(other[0], other[1], other[2])];
+          if ((f_node < 0) == (f_other < 0)) continue;
+          const double s = f_node / (f_node - f_other);
+          double d2 = 0;
+          for (int b = 0; b < 3; ++b) {
+            const double x = node[b] + s * (other[b] - node[b]);
+            d2 += (x - u[b]) * (x - u[b]);
+          }
+          if (d2 < best) {
+            best = d2;
+            std::copy(other, other + 3, best_other);
+          }
+        }
+      const Vec a = grid.Point(node[0], node[1], node[2]);
+      if (best < 1e-4) {
+        const Vec b = grid.Point(best_other[0], best_other[1], best_other[2]);
+        const double f_b = grid.values[grid.Index(best_other[0], best_other[1], best_other[2])];
+        mesh.vertices[v] = RootOnEdge(model, a, b, f_node, f_b);
+      } else {  // not expected; keep VTK's interpolated position
+        mesh.vertices[v] = grid.origin + h * Vec(u[0], u[1], u[2]);
+      }
+      const double f = model.Value(mesh.vertices[v]);
+      abs_value[v] = std::isfinite(f) ? std::abs(f) : std::numeric_limits<double>::infinity();
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(refine, t);
+    refine(0);
+    for (std::thread& th : pool) th.join();
+  }
+  result.max_abs_value = num_points ? *std::max_element(abs_value.begin(), abs_value.end()) : 0.0;
+
+  vtkCellArray* polys = poly->GetPolys();
+  mesh.triangles.reserve(polys->GetNumberOfCells());
+  std::vector<Eigen::Vector3i> triangle_cells;  // the grid cell of each triangle (step 5)
+  triangle_cells.reserve(polys->GetNumberOfCells());
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
+    polys->GetCellAtId(c, ids);
+    if (ids->GetNumberOfIds() != 3) continue;  // flying edges emits triangles only
+    mesh.triangles.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
+                                static_cast<int>(ids->GetId(2)));
+    // The triangle's vertices lie on edges of one cell: its centroid (index space) is inside.
+    Vec centroid = Vec::Zero();
+    for (int k = 0; k < 3; ++k) {
+      double u[3];
+      poly->GetPoint(ids->GetId(k), u);
+      centroid += Vec(u[0], u[1], u[2]) / 3.0;
+    }
+    Eigen::Vector3i cell;
+    for (int a = 0; a < 3; ++a)
+      cell[a] = std::clamp(static_cast<int>(std::floor(centroid[a])), 0, grid.n[a] - 2);
+    triangle_cells.push_back(cell);
+  }
+  // 4. Normals from grad f; orient the triangles with it (one global decision by majority,
+  // so the case table's consistent orientation is kept).
+  mesh.normals.assign(num_points, Vec::Zero());
+  std::vector<Vec> face_sum(num_points, Vec::Zero());
+  for (vtkIdType v = 0; v < num_points; ++v) {
+    const Vec g = model.Gradient(mesh.vertices[v]);
+    const double n = g.norm();
+    if (std::isfinite(n) && n > 0) mesh.normals[v] = g / n;
+  }
+  long agree = 0, disagree = 0;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const Vec& p0 = mesh.vertices[t[0]];
+    const Vec cross = (mesh.vertices[t[1]] - p0).cross(mesh.vertices[t[2]] - p0);
+    const double s = cross.dot(mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]]);
+    if (s > 0) ++agree;
+    if (s < 0) ++disagree;
+  }
+  const bool flip = disagree > agree;
+  for (Eigen::Vector3i& t : mesh.triangles) {
+    if (flip) std::swap(t[1], t[2]);
+    const Vec& p0 = mesh.vertices[t[0]];
+    const Vec cross = (mesh.vertices[t[1]] - p0).cross(mesh.vertices[t[2]] - p0);
+    for (int k = 0; k < 3; ++k) face_sum[t[k]] += cross;
+  }
+  for (vtkIdType v = 0; v < num_points; ++v)
+    if (mesh.normals[v].isZero()) {
+      const double n = face_sum[v].norm();
+      mesh.normals[v] = n > 0 ? Vec(face_sum[v] / n) : Vec(0, 0, 1);
+    }
+  if (options.sharp_features) {  // 5.
+    SharpFeatureOptions sharp;
+    sharp.feature_angle_deg = options.feature_angle_deg;
+    const SharpFeatureStats stats =
+        InsertSharpFeatures(model, grid.origin, h, triangle_cells, &mesh, sharp);
+    result.feature_points = stats.feature_points;
+    result.feature_flips = stats.flips;
+    result.max_feature_distance = stats.max_distance;
+  }
+  return result;
+}
+
+void WriteMeshPlyFile(const TriangleMesh& mesh, const std::string& path) {
+  if (mesh.normals.size() != mesh.vertices.size())
+    throw std::invalid_argument("WriteMeshPlyFile: normals do not match the vertices");
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by implicitfit mesh\n";
+  out += "element vertex " + std::to_string(mesh.vertices.size()) + "\n";
+  for (const char* name : {"x", "y", "z", "nx", "ny", "nz"})
+    out += std::string("property double ") + name + "\n";
+  out += "element face " + std::to_string(mesh.triangles.size()) + "\n";
+  out += "property list uchar int vertex_indices\nend_header\n";
+  const std::uint16_t one = 1;
+  std::uint8_t first;
+  std::memcpy(&first, &one, 1);
+  const bool swap = first != 1;
+  auto append = [&](const void* data, size_t size) {
+    char bytes[8];
+    std::memcpy(bytes, data, size);
+    if (swap) std::reverse(bytes, bytes + size);
+    out.append(bytes, size);
+  };
+  out.reserve(out.size() + mesh.vertices.size() * 48 + mesh.triangles.size() * 13);
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.vertices[v][k];
+      if (!std::isfinite(x))
+        throw std::invalid_argument("WriteMeshPlyFile: vertex " + std::to_string(v) +
+                                    " is not finite");
+      append(&x, 8);
+    }
+    for (int k = 0; k < 3; ++k) append(&mesh.normals[v][k], 8);
+  }
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const std::uint8_t three = 3;
+    out.push_back(static_cast<char>(three));
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t i = t[k];
+      append(&i, 4);
+    }
+  }
+  WriteFileAtomically(path, out);
+}
+
+}  // namespace implicitfit

@@ -1,0 +1,31 @@
+#include "datasets/normals/oriented_cloud.h"
+
+#include <stdexcept>
+
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/normals/normal_estimation.h"
+
+namespace implicitfit {
+
+PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action,
+                             bool estimate_missing) {
+  CloudFileInfo info;
+  PointCloud cloud = ReadCloudFile(path, &info);
+  if (!estimate_missing && !cloud.has_normals()) {
+    if (normals_action) *normals_action = "none in the file";
+    return cloud;
+  }
+  NormalOptions options;
+  options.viewpoint = info.viewpoint;
+  try {
+    const NormalResult result = EnsureOrientedNormals(&cloud, options);
+    if (normals_action) *normals_action = result.action;
+  } catch (const std::invalid_argument& e) {
+    // Too few points to estimate normals: not an invalid file but degenerate data; the fit
+    // that follows fails with its own reason (exit 1).
+    if (normals_action) *normals_action = std::string("none (") + e.what() + ")";
+  }
+  return cloud;
+}
+
+}  // namespace implicitfit

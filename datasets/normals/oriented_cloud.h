@@ -1,0 +1,20 @@
+// Reads a cloud file and makes sure it has consistently oriented normals: the file's normals
+// are kept (re-oriented when their signs are inconsistent), missing ones are estimated and
+// oriented toward the file's viewpoint when it gives one, else by MST propagation
+// (datasets/normals/normal_estimation.h). `normals_action` says which happened, for reports.
+// Throws InputError naming the file when it cannot be read. A cloud too small to estimate
+// normals is returned without them (`normals_action` says so): degenerate data, left to the
+// fit to refuse with exit 1.
+// estimate_missing false: a file without normals is returned without them ("none in the file").
+#pragma once
+
+#include <string>
+
+#include "datasets/clouds/point_cloud.h"
+
+namespace implicitfit {
+
+PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action,
+                             bool estimate_missing = true);
+
+}  // namespace implicitfit

@@ -1,0 +1,160 @@
+// Fitting a Bernstein mesh (model/bernstein/bernstein_mesh.h) to an oriented cloud: the patch-mesh fit of
+// NOTES.md G-1 (fit --model patch-mesh).
+//
+// Grid. The cloud's bounding box grown on every side by the larger of 5% of its extent and
+// box_margin (10%) of the longest extent (5% only with --convex; at least 5% of the longest
+// extent on a flat axis); cube edge h = --cell, or (--cells n) the longest grown extent / n;
+// n_a = ceil(extent_a / h) cubes per axis, centred on the box. The margin keeps the box faces
+// beyond the far-field band, so that the box-face rows below can close the zero set.
+// 1. Linear initialisation, one sparse least-squares problem: f(p_i) = 0 and
+//    f(p_i +- d n_i) = +-d (d = 1% of the box diagonal), linear in the control points, plus the
+//    far-field rows: at the points of a lattice of spacing h/2 farther than 2d from every input
+//    point, f(x) = (x - p) . n_p with p the nearest input point (Hoppe's signed tangent-plane
+//    distance, weight far_field_weight), so that f keeps the sign of the nearest data away from
+//    the surface and no spurious sheet crosses empty space; on the box faces the target is
+//    +|x - p| (outside), so that f > 0 on the whole box boundary and the zero set is a closed
+//    surface inside the box: an open scan (oni's unscanned base) is capped smoothly instead of
+//    leaving the box, where a mesher would cut it open (box_sign_errors counts the box-face
+//    samples where f <= 0 after the fit; 0 on every benchmark cloud); so is it at lattice points
+//    beside the data (direction from p more than 60 degrees off n_p: beyond an open rim, where
+//    the tangent-plane sign means nothing), so that such a cap closes near the rim. By default
+//    (far_field_winding) the inside/outside sign of every row off the box comes from the
+//    cloud's generalised winding number w instead (fit/bernstein/winding_number.h: inside where w > 1/2;
+//    its level 1/2 spans an open rim, flat for a planar one), and the target's magnitude is at
+//    most |w - 1/2| / |grad w|, the first-order distance to that level, so the targets form one
+//    signed distance across the cap (oni, degree 5: Chamfer 0.0149 -> 0.0132, PCL Poisson 0.0136;
+//    a sphere scanned above z = -0.3: cap 0.2 below the rim -> 0.065). The weight of a
+//    far-field row (not on the box) grows linearly with its distance to the data up to one cube
+//    edge (far_field_ramp, in cubes), so that near the data, where the tangent-plane targets of a
+//    curved surface disagree with each other, the data rows decide the shape and the far-field
+//    rows only keep the signs (kitten, degree 5: RMS 0.00111 -> 0.00083, Chamfer
+//    0.00387 -> 0.00372). Solved on the
+//    global domain points (b = P w: C0 exact, model/bernstein/bernstein_mesh_continuity.h) with the C1
+//    rows as weighted equations (weight continuity_weight) and soft C2 rows (smoothing_weight)
+//    on the faces of tetrahedra that hold no point, so holes close smoothly, by sparse Cholesky
+//    (CHOLMOD) of the normal equations; then the exact projection onto ker C. The refinement's
+//    systems reuse the last factor as a preconditioner of conjugate gradients
+//    (fit/bernstein/reused_cholesky.h).
+// 2. Refinement (unconstrained): Gauss-Newton on r_i = f(p_i)/|grad f(p_i)| with |grad f|
+//    frozen at the current iterate, i.e. iteratively reweighted linear least squares in the
+//    same domain-point unknowns as step 1: rows c_i f(p_i)/g_i (c_i the Cauchy weight at 3x the
+//    current RMS), w_n (grad f(p_i)/g_i - n_i) with w_n = normal_weight x diagonal / 10, the
+//    offset rows of step 1 with weight 0.1 (they fix the scale of f, which r_i leaves free) and
+//    the far-field rows; until the RMS improves by less than 0.5% (at most max_iterations);
+//    the best iterate is kept, so the result is never worse than the start (and an iterate with
+//    more far-field sign errors than the start, a spurious sheet, is never kept). When these steps
+//    make no progress (< 0.5%; on grids of at most 1 500 tetrahedra), the Ceres refinement of step
+//    3 without the guard runs from the result and is kept when better after the projection. Then
+//    the exact projection onto the continuity space (fit/bernstein/continuity_projection.h). Why not Ceres
+//    here (as the first version did, one parameter block per tetrahedron): with the continuity rows
+//    as stiff penalties (weight 1e4) Levenberg-Marquardt did not converge in 100 iterations on
+//    kitten (216 patches: 30 s) and its iterate used the slack of the penalty (continuity
+//    defect 2.8e-5): RMS 0.0026 before the projection, 0.092 after it, so the start (0.0199) was
+//    kept. Each linearised step is solved exactly instead (defect ~1e-6, which the projection
+//    removes without changing the RMS): kitten 0.0199 -> 0.0094 in 4.5 s.
+//    Far-field relaxation (issue 11). The far-field rows' targets (tangent-plane distances) are
+//    not a function the spline can match near a curved surface (the signed distance has a
+//    ridge on the medial axis: a torus tube's core circle, a sphere's centre), so at full weight
+//    they hold the zero set off the data: on the noise-free torus of bench/surface_comparison
+//    the fit stopped at RMS 1.9e-3 (truth distance 1.47e-3, as with noise: 1.57e-3), while the
+//    space reaches 6.9e-4 (Ceres without far-field rows). So when the iteration stalls, the
+//    far-field rows' weight is multiplied by far_field_relaxation (0.3) and the iteration goes on
+//    from the best iterate, down to far_field_floor (0.005) x far_field_weight, for as long as
+//    each stage improves the RMS; the rows only keep the signs there. In these relaxed stages
+//    the rows are the exact Gauss-Newton linearisation of f/|grad f| and of the normal residual
+//    (not the frozen-gradient rows, whose steps do not descend once the far-field rows no
+//    longer hold |grad f|): J b = -r_i with J = B(p)/g - (f/g^3) g . grad B(p) (r is
+//    homogeneous of degree 0 in b, so J b_current = 0). A relaxed step is admissible only if it
+//    also changes nothing of f away from the data (fit/bernstein/empty_space_sign_guard.h: signs and
+//    clearance at a lattice of spacing h / sign_guard_samples farther than 2d from the data, so
+//    no new blob or sheet grows where the far-field rows are lighter); a stage without an
+//    admissible improving step ends the relaxation. Noisy torus (20 000 points, sigma 0.005):
+//    RMS distance to the truth 0.39 sigma -> 0.17 sigma (the least-squares floor
+//    sigma sqrt(p/N) is 0.13 sigma; tests/fit/bernstein/bernstein_mesh_relaxation_test.cc).
+// 3. --convex (C1 only; Ceres, one parameter block per tetrahedron, Cauchy loss at 3x the
+//    step-1 RMS, the continuity rows as penalties (weight continuity_weight) and the offset rows
+//    with weight 0.1; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
+//    f convex on the box): start from the certified convex degree-2 patch fit
+//    (fit/bernstein/patch_fitter.h) on the enclosing tetrahedron, restricted to every tetrahedron and
+//    elevated to degree k (a global quadric: C-infinity, certified on every tetrahedron), so
+//    the start is feasible; a guard rejects every step after which some tetrahedron's
+//    smallest A^mu eigenvalue falls below the margin; after the projection every tetrahedron
+//    is re-certified and the continuity defect checked. Failure => success = false. The
+//    unconstrained fit (step 2) is also run, for its RMS (unconstrained_rms: the price of
+//    convexity; it costs a fraction of the guarded refinement).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "model/bernstein/bernstein_mesh.h"
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct MeshFitOptions {
+  int degree = 3;         // 2..5 (C1 wants >= 3: C1 quadratics are nearly global)
+  int cells = 0;          // cubes along the longest box edge (used when cell == 0)
+  double cell = 0.0;      // cube edge h; 0: from cells (default 8 cubes, 4 with --convex)
+  bool has_grid = false;  // use `grid` as given instead of the cloud's box
+  BernsteinGrid grid;
+  int continuity = 1;                 // 0 or 1
+  bool convex = false;                // enforce and certify convexity on the whole box (C1 only)
+  double normal_weight = 0.1;         // w of the normal residuals
+  int max_iterations = 100;           // Ceres iterations
+  double continuity_weight = 1e4;     // weight of the continuity rows before the projection
+  double smoothing_weight = 0.1;      // weight of the C2 rows on faces of empty tetrahedra
+  double far_field_weight = 1.0;      // weight of the far-field rows (header, step 1); 0: none
+  double far_field_beside_cos = 0.5;  // far-field points beside the data are outside (.cc)
+  double far_field_ramp = 1.0;        // > 0: row weight min(1, (distance / (ramp h))^power)
+  double far_field_ramp_power = 1.0;
+  bool far_field_winding = true;  // far-field signs from the winding number (header, step 1);
+                                  // false: the nearest point's tangent plane and "beside"
+  double box_margin = 0.1;        // grid box: cloud box + max(5%, box_margin x longest) per side
+                                  // (not with --convex, which keeps 5%)
+  // Step 2 (header): in the relaxed stages, Gauss-Newton rows from the exact linearisation of
+  // f/|grad f| and of the normal residual (false: the frozen-gradient rows there too).
+  bool exact_linearisation = true;
+  // Step 2: when the refinement stalls, the far-field rows' weight is multiplied by
+  // far_field_relaxation (0 or 1: never), down to far_field_floor x far_field_weight, while the
+  // stages improve and keep every sign away from the data (sign_guard_samples per cube edge).
+  double far_field_relaxation = 0.3;
+  double far_field_floor = 0.005;
+  int sign_guard_samples = 8;
+  bool IsValid(std::string* error) const;
+};
+
+struct MeshFitResult {
+  bool success = false;
+  std::string message;
+  int degree = 0;
+  int continuity = 0;
+  BernsteinGrid grid;
+  std::vector<double> control_points;  // all tetrahedra, model/bernstein/bernstein_mesh.h layout
+  double rms = 0.0;                    // RMS of f/|grad f| over all points
+  double initial_rms = 0.0;            // after the linear initialisation
+  double unconstrained_rms = -1;       // --convex: RMS of the unconstrained fit (step 2), else -1
+  double mean_normal_angle_deg = -1;   // mean angle between grad f and the normals
+  double continuity_defect = 0.0;      // max |C b| / max |b| after the projection
+  long long box_sign_errors = 0;  // far-field samples on the box faces with f <= 0 (0: the zero
+                                  // set closes inside the box; -1 when no far-field rows)
+  bool certified_convex = false;  // every tetrahedron certified (and, C1, defect tiny)
+  int certified_tetrahedra = 0;
+  double min_eigenvalue = 0.0;  // smallest A^mu eigenvalue over all tetrahedra
+  long long tetrahedra = 0;
+  int iterations = 0;
+  bool kept_initialisation = false;  // the refinement did not improve: the initialisation is kept
+  double seconds = 0.0;
+  Model ToModel() const;
+};
+
+MeshFitResult FitBernsteinMesh(const std::vector<Eigen::Vector3d>& points,
+                               const std::vector<Eigen::Vector3d>& normals,
+                               const MeshFitOptions& options);
+
+// The grid the fitter uses for a cloud (see the header comment).
+BernsteinGrid MeshGridForCloud(const std::vector<Eigen::Vector3d>& points, int cells, double cell,
+                               double margin = 0.0);
+
+}  // namespace implicitfit

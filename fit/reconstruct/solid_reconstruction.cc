@@ -1,0 +1,607 @@
+#include "fit/reconstruct/solid_reconstruction.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+#include <stdexcept>
+
+#include "fit/reconstruct/csg_separation.h"
+#include "fit/reconstruct/fillet_separators.h"
+#include "fit/reconstruct/offset_samples.h"
+#include "fit/primitive/primitive_fitter.h"
+#include "fit/reconstruct/solid_bounding.h"
+#include "fit/tree/tree_covariance.h"
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+// Copies the subtree of src at `index` into dst; returns the new node's index.
+int CopyNode(const Model& src, int index, Model* dst) {
+  const ModelNode& node = src.nodes()[index];
+  const double* p = src.parameters().data() + node.first_parameter;
+  int copied;
+  if (IsOperator(node.type)) {
+    std::vector<int> children;
+    for (int c : node.children) children.push_back(CopyNode(src, c, dst));
+    copied = dst->AddOperator(node.type, children, p[0], p[1], node.order, node.name);
+  } else if (node.type == NodeType::kBernsteinPatch) {
+    copied = dst->AddBernsteinPatch(node.degree, node.tetrahedron,
+                                    std::vector<double>(p, p + node.num_parameters), node.name);
+  } else {
+    copied =
+        dst->AddPrimitive(node.type, std::vector<double>(p, p + node.num_parameters), node.name);
+  }
+  dst->mutable_nodes()[copied].fixed = node.fixed;
+  return copied;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Value and central-difference gradient of one node of a model.
+double NodeValue(const Model& m, int node, const Vec& x, Vec* grad, double h) {
+  const double* p = m.parameters().data();
+  for (int k = 0; k < 3; ++k) {
+    Vec a = x, b = x;
+    a[k] += h;
+    b[k] -= h;
+    (*grad)[k] = (m.EvaluateNode(node, p, a.data()) - m.EvaluateNode(node, p, b.data())) / (2 * h);
+  }
+  return m.EvaluateNode(node, p, x.data());
+}
+
+// Fixes every field of the primitives that no smooth operator (order > 0) has above them; returns
+// true when some parameter is left free. In a sharp subtree every point's residual depends on
+// the one active primitive, which the primitive fitter has already fitted to its own points:
+// freeing it in the joint fit changes little and multiplies the autodiff passes over the whole
+// tree (Fit4CAD PC131: 18 primitives, no blend, about 2 s per iteration on 2 cores).
+bool FixPrimitivesOutsideBlends(Model* m) {
+  bool any_free = false;
+  std::vector<std::pair<int, bool>> stack = {{m->root(), false}};
+  while (!stack.empty()) {
+    const auto [index, under_blend] = stack.back();
+    stack.pop_back();
+    ModelNode& node = m->mutable_nodes()[index];
+    if (IsOperator(node.type)) {
+      const bool smooth = node.order > 0;
+      any_free = any_free || smooth;
+      for (int c : node.children) stack.push_back({c, under_blend || smooth});
+    } else if (!under_blend) {
+      node.fixed.clear();
+      for (const ParameterField& field : ParameterFieldsOf(node.type))
+        node.fixed.push_back(field.name);
+    } else {
+      any_free = any_free || node.fixed.empty();
+    }
+  }
+  return any_free;
+}
+
+// What the tree fitter reports, for a model with nothing left to fit: first-order distances
+// d_i = f / |grad f|, sigma = 1.4826 median |d_i|, RMS of the inliers |d_i| < max(3 sigma,
+// floor) (noise-free clouds: most points on planes have d_i = 0, and so has sigma).
+TreeFitResult UnfittedTreeFigures(const Model& m, const std::vector<Vec>& points,
+                                  const std::vector<Vec>& normals, double floor) {
+  TreeFitResult r;
+  r.model = m;
+  std::vector<double> d(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    double f;
+    const Vec g = m.Gradient(points[i], &f);
+    d[i] = std::abs(f) / std::sqrt(g.squaredNorm() + 1e-12);
+  }
+  r.sigma = 1.4826 * Median(d);
+  double ss = 0, angles = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!(d[i] < std::max(3 * r.sigma, floor))) continue;
+    ++r.inliers;
+    ss += d[i] * d[i];
+    const Vec g = m.Gradient(points[i]).normalized();
+    angles += std::acos(std::min(1.0, std::abs(g.dot(normals[i])))) * 180.0 / M_PI;
+  }
+  r.rms = r.inliers ? std::sqrt(ss / r.inliers) : 0.0;
+  if (r.inliers) r.mean_normal_angle_deg = angles / r.inliers;
+  r.success = true;
+  r.message = "no blend: the primitives keep their fits";
+  return r;
+}
+
+}  // namespace
+
+double ImpliedFilletRadius(double delta, double crease_angle_rad) {
+  return delta / (4.0 * (1.0 - std::cos(0.5 * crease_angle_rad)));
+}
+
+SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
+                                     const std::vector<Vec>& normals,
+                                     const std::vector<SolidPrimitive>& primitives,
+                                     const SolidReconstructionOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  SolidReconstruction out;
+  const int K = static_cast<int>(primitives.size());
+  const size_t N = points.size();
+  if (K < 1 || K > 64) {
+    out.message = "needs between 1 and 64 primitives, got " + std::to_string(K);
+    return out;
+  }
+  if (normals.size() != N || N < 10) {
+    out.message = "needs at least 10 points with normals";
+    return out;
+  }
+  Vec lo = points[0], hi = points[0];
+  for (const Vec& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diag = (hi - lo).norm();
+  const double R = options.max_fillet * diag;
+
+  // 1. Assignment.
+  std::vector<Model> prim(K);
+  std::vector<double> tau(K);
+  for (int k = 0; k < K; ++k) {
+    prim[k] = primitives[k].model;
+    tau[k] = std::max(3.0 * primitives[k].rms, 1e-3 * diag);
+  }
+  std::vector<int> label(N, -1);
+  std::vector<double> side_vote(K, 0.0);
+  out.assigned.assign(K, 0);
+  for (size_t i = 0; i < N; ++i) {
+    double best = 1.0;
+    for (int k = 0; k < K; ++k) {
+      double f;
+      const Vec g = prim[k].Gradient(points[i], &f);
+      const double gn = g.norm();
+      if (!(gn > 0) || !std::isfinite(f)) continue;
+      const double d = std::abs(f) / gn / tau[k];
+      if (d < best && std::abs(g.dot(normals[i])) >= 0.8 * gn) {
+        best = d;
+        label[i] = k;
+      }
+    }
+    if (label[i] >= 0) {
+      ++out.assigned[label[i]];
+      side_vote[label[i]] += prim[label[i]].Gradient(points[i]).dot(normals[i]) > 0 ? 1 : -1;
+    } else {
+      ++out.unassigned;
+    }
+  }
+  // 2. Orientation: planes flipped to their material side; other kinds keep f and say hole.
+  out.sides.assign(K, "unused");
+  for (int k = 0; k < K; ++k) {
+    if (out.assigned[k] == 0) continue;
+    const bool solid = side_vote[k] >= 0;
+    const ModelNode& root = prim[k].nodes()[prim[k].root()];
+    if (!solid && root.type == NodeType::kPlane && prim[k].nodes().size() == 1) {
+      for (double& v : prim[k].mutable_parameters()) v = -v;
+      out.sides[k] = "solid";
+    } else {
+      out.sides[k] = solid ? "solid" : "hole";
+    }
+  }
+
+  // 3. Inside/outside samples and the separation, with separators and closures when needed
+  //    (fit/reconstruct/solid_bounding.h).
+  std::mt19937_64 rng(options.seed);
+  std::vector<size_t> assigned_points;
+  for (size_t i = 0; i < N; ++i)
+    if (label[i] >= 0) assigned_points.push_back(i);
+  std::vector<Vec> assigned_positions;
+  for (size_t i : assigned_points) assigned_positions.push_back(points[i]);
+  std::shuffle(assigned_points.begin(), assigned_points.end(), rng);
+  if (static_cast<int>(assigned_points.size()) > options.max_samples)
+    assigned_points.resize(options.max_samples);
+  // Literals: the primitives, then separators and closures (fixed planes).
+  std::vector<Model> lit = prim;
+  std::vector<std::string> names;
+  for (int k = 0; k < K; ++k)
+    names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
+  std::vector<int> literal_kind(K, 0);  // 0 primitive, 1 separator, 2 closure
+  std::vector<PlaneLiteral> literal_plane(K);
+  // Samples: positions, inside flags, sign vectors over the literals.
+  std::vector<Vec> sx;
+  std::vector<bool> sin;
+  const double t = options.offset * diag;
+  for (size_t i : assigned_points) {
+    const OffsetSamplePair pair =
+        OffsetSamples(points[i], normals[i], label[i], prim, t, options.adaptive_offset);
+    sx.push_back(pair.inside);
+    sin.push_back(true);
+    sx.push_back(pair.outside);
+    sin.push_back(false);
+  }
+  const size_t offset_samples = sx.size();
+  auto make_shell = [](const Vec& shell_lo, const Vec& shell_hi) {
+    std::vector<Vec> shell;
+    const int grid = 16;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int face = 0; face < 2; ++face)
+        for (int u = 0; u <= grid; ++u)
+          for (int v = 0; v <= grid; ++v) {
+            Vec x;
+            x[axis] = face ? shell_hi[axis] : shell_lo[axis];
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            x[a1] = shell_lo[a1] + (shell_hi[a1] - shell_lo[a1]) * u / grid;
+            x[a2] = shell_lo[a2] + (shell_hi[a2] - shell_lo[a2]) * v / grid;
+            shell.push_back(x);
+          }
+    return shell;
+  };
+  std::vector<Vec> shell = make_shell(lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo));
+  std::vector<std::uint64_t> signs(sx.size() + shell.size(), 0);
+  auto sample_at = [&](size_t s) -> const Vec& {
+    return s < offset_samples ? sx[s] : shell[s - offset_samples];
+  };
+  auto set_literal_bits = [&](int k) {
+    for (size_t s = 0; s < signs.size(); ++s)
+      if (lit[k].Value(sample_at(s)) < 0) signs[s] |= 1ULL << k;
+  };
+  for (int k = 0; k < K; ++k) set_literal_bits(k);
+  auto add_plane_literal = [&](const PlaneLiteral& plane, int kind) {
+    const int k = static_cast<int>(lit.size());
+    names.push_back((kind == 1 ? "separator" : "closure") +
+                    std::to_string(std::count(literal_kind.begin(), literal_kind.end(), kind)));
+    lit.push_back(plane.ToModel(names.back()));
+    literal_kind.push_back(kind);
+    literal_plane.push_back(plane);
+    set_literal_bits(k);
+  };
+  // Fillets (tori; holes are concave fillets, solids convex ones): the box of revolution of their
+  // points (fit/reconstruct/fillet_separators.h): two planes (separators) and two coaxial cylinders (kind 3).
+  std::map<int, CylinderLiteral> literal_cylinder;
+  std::vector<std::pair<int, int>> fillet_outer;  // (hole torus, its outer cylinder) literals
+  for (int k = 0; k < K; ++k) {
+    if (!options.fillet_separators || out.sides[k] == "unused" || lit.size() + 4 > 58) continue;
+    std::vector<Vec> on_torus, their_normals;
+    for (size_t i = 0; i < N; ++i)
+      if (label[i] == k) {
+        on_torus.push_back(points[i]);
+        their_normals.push_back(normals[i]);
+      }
+    FilletBounds bounds;
+    const bool found = out.sides[k] == "hole"
+                           ? FilletBoundsOf(prim[k], on_torus, t / 8, &bounds)
+                           : FilletBoundsOf(prim[k], on_torus, their_normals, t / 8, &bounds);
+    if (!found) continue;
+    add_plane_literal(bounds.low, 1);
+    add_plane_literal(bounds.high, 1);
+    for (const bool outer : {false, true}) {
+      const CylinderLiteral& c = outer ? bounds.outer : bounds.inner;
+      if (!(c.radius > 0)) continue;
+      const int j = static_cast<int>(lit.size());
+      if (outer) fillet_outer.push_back({k, j});
+      names.push_back("separator_cylinder" + std::to_string(literal_cylinder.size()));
+      lit.push_back(c.ToModel(names.back()));
+      literal_kind.push_back(3);
+      literal_plane.push_back(PlaneLiteral{});
+      literal_cylinder[j] = c;
+      set_literal_bits(j);
+    }
+  }
+  bool closed = false;  // closures added: cells outside the closure box are outside
+  auto separate = [&]() {
+    std::vector<CsgSample> samples(signs.size());
+    for (size_t s = 0; s < signs.size(); ++s)
+      samples[s] = {signs[s], s < offset_samples && sin[s], closed && s >= offset_samples};
+    CsgSeparationOptions so;
+    // closures, then separators (fillets' cylinders first), then detected surfaces
+    for (int kind : {2, 3, 1, 0})
+      for (int k = 0; k < static_cast<int>(lit.size()); ++k)
+        if (literal_kind[k] == kind) so.drop_order.push_back(k);
+    return SeparateCells(samples, static_cast<int>(lit.size()), so);
+  };
+  // The sharp tree: union of difference(intersection(positives), negatives).
+  const double placeholder = 1e-3 * diag;
+  auto build_tree = [&](const CsgSeparation& sep) {
+    Model tree;
+    std::vector<int> term_nodes;
+    for (const CsgTerm& term : sep.terms) {
+      std::vector<int> pos, neg;
+      for (int k = 0; k < static_cast<int>(lit.size()); ++k) {
+        if (term.inside >> k & 1) pos.push_back(CopyNode(lit[k], lit[k].root(), &tree));
+        if (term.outside >> k & 1) neg.push_back(CopyNode(lit[k], lit[k].root(), &tree));
+      }
+      if (pos.empty()) continue;  // unbounded (only complements): cannot be part of a solid
+      int node = pos.size() == 1
+                     ? pos[0]
+                     : tree.AddOperator(NodeType::kIntersection, pos, placeholder, placeholder, 0);
+      if (!neg.empty()) {
+        std::vector<int> children = {node};
+        children.insert(children.end(), neg.begin(), neg.end());
+        node = tree.AddOperator(NodeType::kDifference, children, placeholder, placeholder, 0);
+      }
+      term_nodes.push_back(node);
+    }
+    if (term_nodes.empty()) return tree;
+    tree.SetRoot(term_nodes.size() == 1
+                     ? term_nodes[0]
+                     : tree.AddOperator(NodeType::kUnion, term_nodes, placeholder, placeholder, 0));
+    return tree;
+  };
+  auto bounded_on_shell = [&](const Model& tree) {
+    if (tree.nodes().empty()) return false;
+    for (const Vec& x : shell)
+      if (!(tree.Value(x) > 0)) return false;
+    return true;
+  };
+  const std::vector<Vec> directions = SeparatorDirections(prim);
+  const int min_conflict =
+      std::max(options.min_conflict_samples,
+               static_cast<int>(std::ceil(options.min_conflict_fraction * signs.size())));
+  CsgSeparation sep;
+  Model& m = out.model;
+  for (;;) {
+    // Separators: split the most mixed cell while a plane separates it well.
+    for (int round = 0;; ++round) {
+      sep = separate();
+      if (round >= options.max_separators || lit.size() + (closed ? 0 : 6) >= 64) break;
+      std::map<std::uint64_t, std::pair<int, int>> votes;
+      for (size_t s = 0; s < signs.size(); ++s) {
+        if (closed && s >= offset_samples) continue;  // certain: not a vote
+        auto& v = votes[signs[s]];
+        (s < offset_samples && sin[s] ? v.first : v.second) += 1;
+      }
+      std::uint64_t worst = 0;
+      int worst_minority = 0;
+      for (const auto& [cell, v] : votes) {
+        const int minority = std::min(v.first, v.second);
+        if (minority >= min_conflict && minority >= 0.1 * (v.first + v.second) &&
+            minority > worst_minority) {
+          worst = cell;
+          worst_minority = minority;
+        }
+      }
+      if (worst_minority == 0) break;
+      std::vector<Vec> cell_x;
+      std::vector<bool> cell_in;
+      for (size_t s = 0; s < signs.size(); ++s)
+        if (signs[s] == worst && !(closed && s >= offset_samples)) {
+          cell_x.push_back(sample_at(s));
+          cell_in.push_back(s < offset_samples && sin[s]);
+        }
+      const StumpSplit split = BestStump(cell_x, cell_in, directions);
+      // Accepted when it removes at least max(min_conflict, 10%) of the misclassified samples: a
+      // cell may need several cuts, none of them alone halving its minority (Fit4CAD PC131: the
+      // slab's centre and the space beyond its four rounded sides, one plane per side).
+      if (!split.found ||
+          worst_minority - split.errors < std::max<double>(min_conflict, 0.1 * worst_minority))
+        break;
+      add_plane_literal(split.plane, 1);
+    }
+    m = build_tree(sep);
+    if (closed || bounded_on_shell(m)) break;
+    if (lit.size() + 6 > 64) break;
+    // Closures: the box around the assigned points in the part's frame; a new shell around it.
+    closed = true;
+    const std::vector<PlaneLiteral> faces =
+        ClosureBox(ClosureFrame(prim, out.assigned, assigned_positions), assigned_positions,
+                   options.closure_margin * diag);
+    Vec box_lo = Vec::Constant(1e300), box_hi = Vec::Constant(-1e300);
+    for (int corner = 0; corner < 8; ++corner) {
+      // the box's corners: intersections of one face of each pair
+      Eigen::Matrix3d a;
+      Vec b;
+      for (int axis = 0; axis < 3; ++axis) {
+        const PlaneLiteral& f = faces[2 * axis + (corner >> axis & 1)];
+        a.row(axis) = f.normal.transpose();
+        b[axis] = f.offset;
+      }
+      const Vec x = a.inverse() * b;
+      box_lo = box_lo.cwiseMin(x);
+      box_hi = box_hi.cwiseMax(x);
+    }
+    shell = make_shell(box_lo - 0.1 * (box_hi - box_lo), box_hi + 0.1 * (box_hi - box_lo));
+    signs.resize(offset_samples + shell.size());
+    for (size_t s = offset_samples; s < signs.size(); ++s) {
+      signs[s] = 0;
+      for (int k = 0; k < static_cast<int>(lit.size()); ++k)
+        if (lit[k].Value(shell[s - offset_samples]) < 0) signs[s] |= 1ULL << k;
+    }
+    for (const PlaneLiteral& f : faces) add_plane_literal(f, 2);
+  }
+  // A term that carves a concave fillet's tube out (negated hole torus) keeps the fillet's outer
+  // cylinder when (all but 1% of) its inside samples are in it: the shell's samples may all lie
+  // in the tube (Fit4CAD PC124), so that nothing else bounds the term radially.
+  bool tightened = false;
+  for (CsgTerm& term : sep.terms)
+    for (const auto& [torus, outer] : fillet_outer) {
+      const std::uint64_t bit = 1ULL << outer;
+      if (!(term.outside >> torus & 1) || ((term.inside | term.outside) & bit)) continue;
+      int covered = 0, beyond = 0;
+      for (size_t s = 0; s < offset_samples; ++s)
+        if (sin[s] && (signs[s] & term.inside) == term.inside && !(signs[s] & term.outside)) {
+          ++covered;
+          beyond += !(signs[s] & bit);
+        }
+      if (beyond > 0.01 * covered) continue;
+      term.inside |= bit;
+      tightened = true;
+    }
+  if (tightened) m = build_tree(sep);
+  out.expression = CsgExpressionText(sep.terms, names);
+  for (int k = K; k < static_cast<int>(lit.size()); ++k) {
+    bool used = false;
+    for (const CsgTerm& term : sep.terms) used = used || ((term.inside | term.outside) >> k & 1);
+    if (!used) continue;
+    if (literal_kind[k] == 3) {
+      const CylinderLiteral& c = literal_cylinder.at(k);
+      out.separator_cylinders.push_back({names[k], c.point, c.axis, c.radius});
+      continue;
+    }
+    (literal_kind[k] == 1 ? out.separators : out.closures)
+        .push_back({names[k], literal_plane[k].normal, literal_plane[k].offset});
+  }
+  if (m.nodes().empty()) {
+    out.message = "the oriented cloud gives no bounded Boolean expression over the primitives (" +
+                  std::to_string(sep.inside_cells) + " inside cells)";
+    return out;
+  }
+  for (ModelNode& node : m.mutable_nodes())
+    if (IsOperator(node.type)) node.fixed = {"delta", "epsilon"};
+  // 4. Blends from the transition points.
+  const double h = 1e-6 * diag;
+  const double tau_all = *std::max_element(tau.begin(), tau.end());
+  std::vector<int> operators;
+  for (int i = 0; i < static_cast<int>(m.nodes().size()); ++i)
+    if (IsOperator(m.nodes()[i].type)) operators.push_back(i);
+  std::vector<std::vector<double>> deltas(m.nodes().size()), angles(m.nodes().size());
+  for (size_t i = 0; i < N; ++i) {
+    if (label[i] >= 0) continue;
+    const Vec& x = points[i];
+    if (std::abs(m.Value(x)) > R) continue;
+    for (int o : operators) {
+      const ModelNode& node = m.nodes()[o];
+      const bool is_union = node.type == NodeType::kUnion;
+      // w: children values with subtrahends negated; union works on -w (both outside).
+      double best[2] = {-1e300, -1e300};
+      Vec grad[2] = {Vec::Zero(), Vec::Zero()};
+      for (size_t c = 0; c < node.children.size(); ++c) {
+        Vec g;
+        double w = NodeValue(m, node.children[c], x, &g, h);
+        if (node.type == NodeType::kDifference && c > 0) {
+          w = -w;
+          g = -g;
+        }
+        const double key = is_union ? -w : w;  // the most active children: largest key
+        if (key > best[0]) {
+          best[1] = best[0];
+          grad[1] = grad[0];
+          best[0] = key;
+          grad[0] = g;
+        } else if (key > best[1]) {
+          best[1] = key;
+          grad[1] = g;
+        }
+      }
+      if (best[1] < -R || best[0] > tau_all) continue;
+      bool between = true;
+      for (int j = 0; j < 2; ++j) {
+        const double gn = grad[j].norm();
+        const double c = normals[i].dot(grad[j]) / gn;
+        between = between && gn > 0 && c > 0.0 && c < 0.98;
+      }
+      if (!between) continue;
+      const double d =
+          std::pow(std::sqrt(std::max(0.0, -best[0])) + std::sqrt(std::max(0.0, -best[1])), 2);
+      if (d < 2 * tau_all || d > 4 * R) continue;
+      // The blend's normal at that position (parabolic zone): grad S_max(a, b) is proportional
+      // to (1 + (a - b) / delta) grad a + (1 - (a - b) / delta) grad b; the point's normal must
+      // be within 20 degrees of it (random normals of outliers rarely are).
+      const double mix = std::clamp((best[0] - best[1]) / d, -1.0, 1.0);
+      const Vec predicted =
+          ((1 + mix) * grad[0].normalized() + (1 - mix) * grad[1].normalized()).normalized();
+      if (!(predicted.dot(normals[i]) > std::cos(20.0 * M_PI / 180.0))) continue;
+      deltas[o].push_back(d);
+      angles[o].push_back(
+          std::acos(std::clamp(grad[0].normalized().dot(grad[1].normalized()), -1.0, 1.0)));
+    }
+  }
+  const int min_points = std::max(options.min_transition_points,
+                                  static_cast<int>(std::ceil(options.min_transition_fraction * N)));
+  std::vector<int> smooth;
+  for (int o : operators) {
+    if (static_cast<int>(deltas[o].size()) < min_points) continue;
+    ModelNode& node = m.mutable_nodes()[o];
+    node.order = options.blend_order;
+    node.fixed.clear();
+    const double delta0 = Median(deltas[o]);
+    m.mutable_parameters()[node.first_parameter] = delta0;
+    m.mutable_parameters()[node.first_parameter + 1] = 0.6 * delta0;
+    smooth.push_back(o);
+  }
+
+  // 5. Joint refinement on the points near the initial solid.
+  std::vector<Vec> near_points, near_normals;
+  for (size_t i = 0; i < N; ++i) {
+    const double f = m.Value(points[i]);
+    if (std::abs(f) < R) {
+      near_points.push_back(points[i]);
+      near_normals.push_back(normals[i]);
+    }
+  }
+  // Primitives outside every blend keep the primitive fitter's parameters; with no blend at all
+  // nothing is refitted.
+  TreeFitResult fit = FixPrimitivesOutsideBlends(&m)
+                          ? FitModelTree(m, near_points, near_normals, options.tree)
+                          : UnfittedTreeFigures(m, near_points, near_normals, 1e-6 * diag);
+  out.fit_seconds = fit.seconds;
+  out.fit_iterations = fit.iterations;
+  if (!fit.success) {
+    out.message = "tree fit failed: " + fit.message;
+    return out;
+  }
+  out.model = fit.model;
+  out.rms = fit.rms;
+  out.sigma = fit.sigma;
+  std::vector<Vec> inlier_points;
+  int agree = 0;
+  for (size_t i = 0; i < near_points.size(); ++i) {
+    double f;
+    const Vec g = out.model.Gradient(near_points[i], &f);
+    if (!(std::abs(f) / g.norm() < std::max(3 * fit.sigma, 1e-6 * diag))) continue;
+    inlier_points.push_back(near_points[i]);
+    agree += g.dot(near_normals[i]) > 0;
+  }
+  out.inliers = static_cast<int>(inlier_points.size());
+  out.normal_agreement = out.inliers ? static_cast<double>(agree) / out.inliers : 0.0;
+  out.bounded = true;
+  for (const Vec& x : shell) out.bounded = out.bounded && out.model.Value(x) > 0;
+
+  const std::vector<double> sd = TreeStandardDeviations(out.model, inlier_points);
+  for (int o : smooth) {
+    const ModelNode& node = out.model.nodes()[o];
+    BlendEstimate b;
+    b.node = out.model.NodeLabel(o);
+    b.type = NodeTypeName(node.type);
+    b.transition_points = static_cast<int>(deltas[o].size());
+    b.delta = out.model.parameters()[node.first_parameter];
+    b.epsilon = out.model.parameters()[node.first_parameter + 1];
+    b.sd_delta = sd[node.first_parameter];
+    b.sd_epsilon = sd[node.first_parameter + 1];
+    const double phi = Median(angles[o]);
+    b.crease_angle_deg = phi * 180.0 / M_PI;
+    b.fillet_radius = ImpliedFilletRadius(b.delta, phi);
+    b.sd_fillet_radius = ImpliedFilletRadius(b.sd_delta, phi);
+    out.blends.push_back(b);
+  }
+  out.success = out.bounded && out.normal_agreement >= 0.5;
+  out.message = !out.bounded ? "the solid is not bounded (f <= 0 on the box around the cloud)"
+                : out.normal_agreement < 0.5 ? "grad f opposes the normals on most points"
+                                             : "ok";
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points,
+                                                  const std::vector<Vec>& normals,
+                                                  const std::vector<int>& labels,
+                                                  const std::vector<NodeType>& kinds,
+                                                  unsigned seed) {
+  std::vector<SolidPrimitive> primitives;
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    std::vector<Vec> pts, nrm;
+    for (size_t i = 0; i < points.size(); ++i)
+      if (labels[i] == static_cast<int>(k)) {
+        pts.push_back(points[i]);
+        nrm.push_back(normals[i]);
+      }
+    PrimitiveFitOptions options;
+    options.kind = kinds[k];
+    options.seed = seed;
+    const PrimitiveFitResult fit = FitPrimitive(pts, nrm, options);
+    if (!fit.success)
+      throw std::runtime_error("primitive " + std::to_string(k) + ": " + fit.message);
+    primitives.push_back({"p" + std::to_string(k), fit.ToModel(kinds[k]), fit.rms});
+  }
+  return primitives;
+}
+
+}  // namespace implicitfit

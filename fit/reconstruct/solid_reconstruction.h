@@ -1,0 +1,138 @@
+// A solid model of a scan from its detected primitives (`implicitfit reconstruct`):
+//   1. points are assigned to the primitive they fit (|f_k| / |grad f_k| < tau_k, tau_k = max(3
+//      rms_k, 1e-3 diag), |cos(grad f_k, n)| >= 0.8; the smallest distance in units of tau_k);
+//   2. orientation: a primitive is material-inside when most of its points' normals agree in
+//      sign with grad f_k, a hole otherwise (a bore: the cylinder is subtracted); planes are
+//      flipped so that f < 0 is their material side;
+//   3. the Boolean expression: samples p -+ t n (t = 1% of the diagonal, shortened to half the
+//      distance to the next surface along the normal: fit/reconstruct/offset_samples.h) of the assigned
+//      points are inside / outside, points on a box 10% larger than the cloud's are outside;
+//      fit/reconstruct/csg_separation.h turns them into a union of terms, each term
+//      difference(intersection(positive literals), negative literals) (no complement node needed:
+//      every bounded term has a positive literal). While a cell of the arrangement holds many
+//      inside and many outside samples, a separating plane is added (fit/reconstruct/solid_bounding.h); when
+//      the solid is still unbounded (an open scan), the closure box's faces are added and the
+//      solid declared inside it; the closure faces used are reported as not measured; a fillet
+//      (a torus, hole or solid) adds the planes and coaxial cylinders that bound its points
+//      (fit/reconstruct/fillet_separators.h);
+//   4. blends: an operator is made smooth (Li & Phillips, order 3) when enough points fit
+//      neither primitive but lie in its crease region: the two most active children w_a, w_b
+//      (subtrahends negated) are in [-R, tau] (R = max_fillet of the diagonal) and the normal
+//      has a positive component along both gradients. delta starts at the median of
+//      (sqrt(-w_a) + sqrt(-w_b))^2, which solves the blend's zero set a + b + (a - b)^2 / (2
+//      delta) + delta / 2 = 0 in its parabolic zone; epsilon at 0.6 delta. Other operators are
+//      sharp (order 0, delta and epsilon fixed);
+//   5. every free parameter is refined with the tree fitter (fit/tree/tree_fitter.h) on the points
+//      within R of the initial model; standard deviations from fit/tree/tree_covariance.h. Only the
+//      smooth operators and the primitives below them are free: a primitive under sharp
+//      operators only keeps the primitive fitter's parameters (a point's residual there depends
+//      on that primitive alone, which was fitted to its own points), and a tree without a blend
+//      is not refitted (the fit over a whole tree of 18 primitives took hours on Fit4CAD PC131).
+// The implied fillet radius of a blend: on the bisector of two faces whose outward normals make
+// the angle phi, the blended zero set sits at distance delta / 4 from both faces (a = b:
+// 2a + delta / 2 = 0); a circular fillet of radius rho tangent to both has its arc there when
+// rho = delta / (4 (1 - cos(phi / 2))) (phi = 90 deg: rho = 0.854 delta).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "fit/tree/tree_fitter.h"
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct SolidPrimitive {
+  std::string name;  // "p0", ...
+  Model model;       // the primitive as a model (usually one node)
+  double rms = 0.0;  // RMS distance of its points, 0 when unknown
+};
+
+struct SolidReconstructionOptions {
+  double max_fillet = 0.1;  // R: largest fillet considered, fraction of the diagonal
+  double offset = 0.01;     // t of the inside/outside samples, fraction of the diagonal
+  // Shorten t where another surface lies within t along the normal (fit/reconstruct/offset_samples.h).
+  bool adaptive_offset = true;
+  // A torus (a hole: concave fillet; solid: convex fillet) brings the box of revolution of its
+  // points as separators (fit/reconstruct/fillet_separators.h).
+  bool fillet_separators = true;
+  int min_transition_points = 20;          // a blend needs at least this many transition points
+  double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
+  int blend_order = 3;
+  int max_samples = 20000;  // inside/outside samples drawn from the assigned points
+  // Separators (fit/reconstruct/solid_bounding.h): a cell is mixed when its minority has at least
+  // max(min_conflict_samples, min_conflict_fraction of all samples) and 10% of its samples.
+  int max_separators = 16;
+  int min_conflict_samples = 20;
+  double min_conflict_fraction = 0.005;
+  double closure_margin = 0.02;  // closure box: the assigned points' box + this of the diagonal
+  unsigned seed = 1;
+  TreeFitOptions tree;
+};
+
+struct BlendEstimate {
+  std::string node;  // the operator's label in the model
+  std::string type;  // union, intersection, difference
+  int transition_points = 0;
+  double delta = 0, epsilon = 0, sd_delta = 0, sd_epsilon = 0;
+  double crease_angle_deg = 0;  // phi, median over the transition points
+  double fillet_radius = 0, sd_fillet_radius = 0;
+};
+
+// A plane the reconstruction added that is not a detected surface: f = normal . x - offset.
+struct AddedPlane {
+  std::string name;  // "separator0", "closure2", ... as in the expression and the model
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double offset = 0.0;
+};
+
+// A coaxial cylinder the reconstruction added as a separator (a concave fillet's bound,
+// fit/reconstruct/fillet_separators.h): f = |(x - point) x axis| - radius.
+struct AddedCylinder {
+  std::string name;  // "separator_cylinder0", ...
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
+  double radius = 0.0;
+};
+
+struct SolidReconstruction {
+  bool success = false;
+  std::string message;
+  Model model;                     // the fitted solid
+  std::string expression;          // e.g. "(p0 & p1 & !p2) | (p3)"
+  std::vector<std::string> sides;  // per primitive: "solid", "hole" or "unused"
+  std::vector<int> assigned;       // points per primitive
+  int unassigned = 0;
+  bool bounded = false;  // f > 0 on the shell around the cloud
+  double rms = 0.0;      // RMS first-order distance of the fit's inliers
+  double sigma = 0.0;
+  int inliers = 0;
+  double normal_agreement = 0.0;      // share of inliers with n . grad f > 0
+  std::vector<BlendEstimate> blends;  // smooth operators only
+  // Planes in the expression that no data lie on: separators split cells of the arrangement;
+  // closures close the solid where the scan has no data (their faces are not measured).
+  std::vector<AddedPlane> separators, closures;
+  std::vector<AddedCylinder> separator_cylinders;
+  double seconds = 0.0;
+  double fit_seconds = 0.0;  // of which the joint refinement (step 5)
+  int fit_iterations = 0;
+};
+
+SolidReconstruction ReconstructSolid(const std::vector<Eigen::Vector3d>& points,
+                                     const std::vector<Eigen::Vector3d>& normals,
+                                     const std::vector<SolidPrimitive>& primitives,
+                                     const SolidReconstructionOptions& options = {});
+
+// Primitives from labelled points (labels[i] = k: point i lies on primitive k, -1: none), each
+// fitted with the primitive fitter (fit/primitive/primitive_fitter.h) as kinds[k]: the scene that `detect`
+// would give, e.g. from ground-truth labels. Throws std::runtime_error naming a failed primitive.
+std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Eigen::Vector3d>& points,
+                                                  const std::vector<Eigen::Vector3d>& normals,
+                                                  const std::vector<int>& labels,
+                                                  const std::vector<NodeType>& kinds,
+                                                  unsigned seed);
+
+// The fillet radius of the header for a blend of parameter delta at a crease of angle phi.
+double ImpliedFilletRadius(double delta, double crease_angle_rad);
+
+}  // namespace implicitfit

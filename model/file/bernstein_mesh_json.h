@@ -1,0 +1,21 @@
+// JSON form of a bernstein_mesh node (DESIGN.md, additive):
+//   {"type": "bernstein_mesh", "degree": k, "grid": {"origin": [3], "cell": h, "cells": [3]},
+//    "continuity": 0|1, "control_points": [6 nx ny nz (k+1)(k+2)(k+3)/6 numbers]}
+// Tetrahedra are implied by the Kuhn rule (model/bernstein/bernstein_mesh.h), control points per
+// tetrahedron in DESIGN.md order. Errors are ModelFormatError naming the JSON path.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "model/model.h"
+
+namespace implicitfit {
+
+// Reads the mesh-specific fields of `node` (type already checked) and adds the node.
+int ReadBernsteinMeshNode(const nlohmann::json& node, const std::string& path,
+                          const std::string& name, Model* model);
+// Writes the mesh-specific fields of node into *out.
+void WriteBernsteinMeshNode(const Model& model, const ModelNode& node, nlohmann::json* out);
+
+}  // namespace implicitfit
