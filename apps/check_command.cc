@@ -3,7 +3,7 @@
 // certified convex, 1 when some is not (or when --sample contradicts a certificate), 2 when a
 // file is unreadable or invalid (all files are read before anything is printed).
 // --json prints {"convex", "files": [{"file", "convex", "patches": [{"degree", "convex",
-// "min_eigenvalue"}]}]} (DESIGN.md); --sample N adds a "sample" object per patch and a summary.
+// "min_eigenvalue"}]}]} (docs/convexity.md); --sample N adds a "sample" object per patch and a summary.
 // Additive fields (issue #12, model/certificates/convexity_fields.h): per file "tree" and "nodes" (tree
 // certificate), per patch the G-2/G-3/G-4 fields. A file without patches is convex only when its
 // tree is certified (exit 1 otherwise); --patches-only restores the old vacuous verdict.

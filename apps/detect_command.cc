@@ -30,7 +30,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("CLOUD", a->cloud,
                   "Point cloud (.xyz/.pwn/.txt/.xyzl, .ply, .pcd); normals estimated when absent")
       ->required();
-  cmd->add_option("--out", a->out, "Output scene file (JSON, DESIGN.md scene format)")->required();
+  cmd->add_option("--out", a->out, "Output scene file (JSON, docs/scene-file.md)")->required();
   cmd->add_option("--labels", a->labels,
                   "Per-point labels: primitive index, -1 unassigned, one a line");
   cmd->add_option("--ply", a->ply, "Segmented cloud (PLY with normals, label and residual)");

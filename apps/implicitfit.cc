@@ -1,4 +1,4 @@
-// The `implicitfit` command line (DESIGN.md contract). Thin: it wires CLI11 to the commands and
+// The `implicitfit` command line (docs/cli.md contract). Thin: it wires CLI11 to the commands and
 // maps errors to exit codes (2 for invalid usage or input, with the message on stderr).
 #include <glog/logging.h>
 

@@ -44,7 +44,7 @@ install(TARGETS implicitfit RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
 
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/implicitfit"
   DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}" FILES_MATCHING PATTERN "*.h")
-# Every header of the library folders (no PCL include is in any of them: DESIGN.md).
+# Every header of the library folders (no PCL include is in any of them: docs/design.md).
 foreach(folder model fit datasets)
   install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/"
     DESTINATION "${IMPLICITFIT_INTERNAL_INCLUDEDIR}/${folder}"

@@ -152,7 +152,7 @@ class Model {
   int AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon, int order,
                   std::string name = "");
   // A Bernstein patch of degree k >= 1 with NumBernsteinControlPoints(k) control points
-  // (DESIGN.md order); throws std::invalid_argument otherwise.
+  // (docs/design.md order); throws std::invalid_argument otherwise.
   int AddBernsteinPatch(int degree, const Tetrahedron& tetrahedron,
                         const std::vector<double>& control_points, std::string name = "");
   // A composite node (IsComposite: complement, morph, ...) over existing nodes, with its own
@@ -169,7 +169,7 @@ class Model {
   // points each; polyline: >= 2 vertices), radius.
   int AddSkeletonOffset(SkeletonKind kind, const std::vector<double>& points, double radius,
                         std::string name = "");
-  // NOTES.md CO-2's form: a skeleton_offset in field mode with Coleman's features (7 numbers
+  // docs/maths.md CO-2's form: a skeleton_offset in field mode with Coleman's features (7 numbers
   // each: point 3, width, depth, radius, flare; m >= 1), core radius R_C = `radius` > 0:
   // f = 1/2 - max(i, max_f g_f) of model/primitives/coleman_features.h over the skeleton's distance.
   // Parameters [skeleton points, radius, features]. Throws std::invalid_argument otherwise.
@@ -305,7 +305,7 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
       const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
       const int features = SkeletonFeatureCount(node);
       if (features == 0) return SkeletonOffsetEvaluator::Evaluate(kind, node.count, p, x);
-      // NOTES.md CO-2: Coleman's features in field mode, R_C = radius (model/primitives/coleman_features.h)
+      // docs/maths.md CO-2: Coleman's features in field mode, R_C = radius (model/primitives/coleman_features.h)
       auto closest = [&](const T* y, T* c, T* n) {
         SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
         ColemanFeatures::DirectionFrom(c, y, n);

@@ -1,4 +1,4 @@
-// Model files on disk (the JSON contract of DESIGN.md, parsed by model/file/model_json).
+// Model files on disk (the JSON contract of docs/model-file.md, parsed by model/file/model_json).
 // ReadModelFile throws InputError "<file>: <problem>" (for malformed JSON, with the line and
 // column nlohmann reports); WriteModelFile writes atomically (pretty-printed, 2 spaces).
 #pragma once

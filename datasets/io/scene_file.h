@@ -1,4 +1,4 @@
-// Scene files, version 1 (DESIGN.md, a public contract): what `detect` writes and `reconstruct`
+// Scene files, version 1 (docs/scene-file.md, a public contract): what `detect` writes and `reconstruct`
 // reads.
 //   {"format": "implicitfit-scene", "version": 1, "cloud": path, "points": N,
 //    "primitives": [{"name": "p0", "model": NODE, "points": n, "rms_distance": x,

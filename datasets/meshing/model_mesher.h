@@ -9,7 +9,7 @@
 //      f on that edge by the Illinois (modified regula falsi) method, which keeps it bracketed,
 //      so |f(vertex)| ends at the evaluation's rounding level for any continuous f (the linear
 //      interpolation of step 2 is only first-order accurate);
-//   4. vertex normals are grad f / |grad f| (outward, DESIGN.md sign); where the gradient is
+//   4. vertex normals are grad f / |grad f| (outward, docs/design.md sign); where the gradient is
 //      zero or not finite, the mean of the adjacent triangles' normals.
 // Grid values that are NaN count as outside (+h); exact zeros are nudged to +tiny so that no
 // vertex sits on a grid node. Surfaces leaving the box end open at its faces.

@@ -28,7 +28,7 @@ namespace {
 using Vec = Eigen::Vector3d;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// B^k_lambda(tau) for every lambda, DESIGN.md order.
+// B^k_lambda(tau) for every lambda, docs/design.md order.
 void BasisValues(int k, const double* tau, double* out) {
   static thread_local std::vector<double> unit;
   const long long n = NumBernsteinControlPoints(k);

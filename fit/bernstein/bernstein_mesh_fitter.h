@@ -1,5 +1,5 @@
 // Fitting a Bernstein mesh (model/bernstein/bernstein_mesh.h) to an oriented cloud: the patch-mesh fit of
-// NOTES.md G-1 (fit --model patch-mesh).
+// docs/maths.md G-1 (fit --model patch-mesh).
 //
 // Grid. The cloud's bounding box grown on every side by the larger of 5% of its extent and
 // box_margin (10%) of the longest extent (5% only with --convex; at least 5% of the longest
@@ -73,7 +73,7 @@
 //    sigma sqrt(p/N) is 0.13 sigma; tests/fit/bernstein/bernstein_mesh_relaxation_test.cc).
 // 3. --convex (C1 only; Ceres, one parameter block per tetrahedron, Cauchy loss at 3x the
 //    step-1 RMS, the continuity rows as penalties (weight continuity_weight) and the offset rows
-//    with weight 0.1; NOTES.md G-1 theorem: C1 + every patch certified on a convex box =>
+//    with weight 0.1; docs/maths.md G-1 theorem: C1 + every patch certified on a convex box =>
 //    f convex on the box): start from the certified convex degree-2 patch fit
 //    (fit/bernstein/patch_fitter.h) on the enclosing tetrahedron, restricted to every tetrahedron and
 //    elevated to degree k (a global quadric: C-infinity, certified on every tetrahedron), so

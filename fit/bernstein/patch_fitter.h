@@ -10,7 +10,7 @@
 // 2. Ceres refinement of r_0 = f / |grad f| (first-order geometric distance) and the normal term
 //    w (grad f / |grad f| - n) (signed: grad f follows the normals' orientation), grad f analytic
 //    (de Casteljau), Cauchy loss at 3 sigma of the initial fit.
-// 3. --convex, every A^mu of DESIGN.md positive definite with the margin
+// 3. --convex, every A^mu of docs/design.md positive definite with the margin
 //    lambda_min(A^mu) >= 1e-6 max|b| (scale-invariant):
 //    degree 2: exact parameterisation A = L L^T + m I (L lower triangular, 6 numbers) plus the
 //      four free control points b_1004..b_0002 (the rest follow from A), so every iterate is

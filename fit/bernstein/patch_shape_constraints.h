@@ -1,5 +1,5 @@
 // Guo §3 shape control as exact linear equalities on the control points of a degree-k patch
-// (papers/NOTES.md G-3), removed from the free parameters of the patch fitter:
+// (docs/maths.md G-3), removed from the free parameters of the patch fitter:
 //   through vertex i:        b_{k e_i} = 0                          (x_i on the surface)
 //   vertex normal i = n:     b_{k e_i} = 0 and b_{(k-1) e_i + e_j} = (s / k) n . (x_j - x_i) for
 //                            the three j != i, one free scale s (by Lemma 1,

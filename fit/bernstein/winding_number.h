@@ -32,7 +32,7 @@ std::vector<double> PointAreas(const std::vector<Eigen::Vector3d>& points,
 
 class WindingNumber {
  public:
-  // normals: unit, outward (f < 0 inside, DESIGN.md); same size as points.
+  // normals: unit, outward (f < 0 inside, docs/design.md); same size as points.
   WindingNumber(const std::vector<Eigen::Vector3d>& points,
                 const std::vector<Eigen::Vector3d>& normals);
   double operator()(const Eigen::Vector3d& x) const { return Evaluate(x, nullptr); }

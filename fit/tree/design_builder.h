@@ -1,4 +1,4 @@
-// Design from oriented points (Li & Phillips §4.1; NOTES.md LP-3): `implicitfit design CLOUD
+// Design from oriented points (Li & Phillips §4.1; docs/maths.md LP-3): `implicitfit design CLOUD
 // --primitive plane|paraboloid --count m`.
 //   1. m oriented representatives: k-means (Lloyd, 50 rounds) on the features (x / L, 2 n),
 //      L the cloud's bounding-box diagonal, seeded by farthest-point sampling from the point

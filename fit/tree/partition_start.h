@@ -1,5 +1,5 @@
 // Linear start of `fit --model partition --grid AxBxC [--child plane|quadric|quadric-patch]`
-// (NOTES.md LP-1):
+// (docs/maths.md LP-1):
 //   1. A x B x C cells at equal spacing over the cloud's bounding box enlarged 5% on every side
 //      (or a given box): cuts t_i = lo + i (hi - lo) / A, i = 1..A-1 per axis;
 //      eps = 0.25 * the smallest cell width (so the >= 2 eps rule holds with margin);

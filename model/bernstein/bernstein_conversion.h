@@ -25,7 +25,7 @@ struct CartesianQuadric {
   double operator()(const Eigen::Vector3d& x) const { return x.dot(A * x) + 2.0 * b.dot(x) + c; }
 };
 
-// Control points (DESIGN.md order) of q on tet, at degree k >= 2 (elevated from 2).
+// Control points (docs/design.md order) of q on tet, at degree k >= 2 (elevated from 2).
 std::vector<double> QuadricToBernstein(const CartesianQuadric& q, const Tetrahedron& tet,
                                        int k = 2);
 // The quadric of a degree-2 patch (10 control points).

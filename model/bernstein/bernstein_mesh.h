@@ -1,4 +1,4 @@
-// A mesh of Bernstein–Bézier patches over the Kuhn split of a box grid (NOTES.md G-1).
+// A mesh of Bernstein–Bézier patches over the Kuhn split of a box grid (docs/maths.md G-1).
 //
 // Grid. origin o, cube edge h, nx x ny x nz cubes; cube (i, j, l) has corner
 // c = o + h (i, j, l) and index cube = (l ny + j) nx + i. Every cube is split the same way
@@ -7,7 +7,7 @@
 // with vertices, in the order of the patch's barycentric coordinates tau1..tau4,
 //   x1 = c, x2 = c + h e_pi0, x3 = c + h (e_pi0 + e_pi1), x4 = c + h (1, 1, 1).
 // Tetrahedron index t = 6 cube + permutation; its control points are the t-th run of
-// NumBernsteinControlPoints(k) values (DESIGN.md order), so the mesh has
+// NumBernsteinControlPoints(k) values (docs/design.md order), so the mesh has
 // 6 nx ny nz NumBernsteinControlPoints(k) parameters.
 //
 // Point location is O(1): with local coordinates u = (x - c)/h in [0, 1]^3 the point lies in

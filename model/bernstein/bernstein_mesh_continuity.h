@@ -1,4 +1,4 @@
-// Continuity between the patches of a Bernstein mesh (NOTES.md G-1), as linear rows C b = 0 on
+// Continuity between the patches of a Bernstein mesh (docs/maths.md G-1), as linear rows C b = 0 on
 // the mesh's control points b (all tetrahedra, model/bernstein/bernstein_mesh.h layout), and a basis of
 // the continuous spline space.
 //
@@ -16,7 +16,7 @@
 // global domain points (lattice of spacing h/k, (k nx + 1)(k ny + 1)(k nz + 1) of them): b = P w
 // with P a 0/1 selection. C1 adds the j = 1 rows, G = C1 P, and the basis is
 // N = P K with K an orthonormal basis of ker G (column-pivoted Householder QR of G^T with a
-// relative threshold; the singular values of these rows have a clear gap, NOTES.md G-1).
+// relative threshold; the singular values of these rows have a clear gap, docs/maths.md G-1).
 #pragma once
 
 #include <Eigen/Core>

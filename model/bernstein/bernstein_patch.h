@@ -6,7 +6,7 @@
 // tau3 (negative outside the tetrahedron; the polynomial is evaluated everywhere). The patch is
 //   f(x) = sum_{|lambda| = k} b_lambda B^k_lambda(tau),  B^k_lambda = k!/(lambda1!..lambda4!)
 //   tau^lambda.
-// Control points b_lambda are listed in DESIGN.md order (multi-indices lexicographically
+// Control points b_lambda are listed in docs/design.md order (multi-indices lexicographically
 // descending); the position of lambda in that list does not depend on k:
 //   index(lambda) = C(s1 + 2, 3) + C(s2 + 1, 2) + s3,  s1 = l2+l3+l4, s2 = l3+l4, s3 = l4,
 // so the degree-(k-1) list is a prefix of the degree-k list.
@@ -32,14 +32,14 @@ constexpr long long NumBernsteinControlPoints(long long k) {
   return (k + 1) * (k + 2) * (k + 3) / 6;
 }
 
-// Position of a multi-index in the DESIGN.md control-point list (independent of the degree;
+// Position of a multi-index in the docs/design.md control-point list (independent of the degree;
 // lambda1 = k - l2 - l3 - l4 is implied).
 constexpr int BernsteinIndex(int l2, int l3, int l4) {
   const int s1 = l2 + l3 + l4, s2 = l3 + l4;
   return s1 * (s1 + 1) * (s1 + 2) / 6 + s2 * (s2 + 1) / 2 + l4;
 }
 
-// All multi-indices of degree k in DESIGN.md order.
+// All multi-indices of degree k in docs/design.md order.
 std::vector<std::array<int, 4>> BernsteinMultiIndices(int k);
 
 class Tetrahedron {
@@ -118,7 +118,7 @@ auto WithWorkspace(int k, F f) {
 
 class BernsteinPatch {
  public:
-  // f(x). control_points: NumBernsteinControlPoints(k) values, DESIGN.md order.
+  // f(x). control_points: NumBernsteinControlPoints(k) values, docs/design.md order.
   template <typename T>
   static T Evaluate(int k, const Tetrahedron& tet, const T* control_points, const T* x) {
     T tau[4];

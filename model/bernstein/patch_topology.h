@@ -1,4 +1,4 @@
-// Guo §3 topology diagnostics of a Bernstein patch (papers/NOTES.md G-3), from the control
+// Guo §3 topology diagnostics of a Bernstein patch (docs/maths.md G-3), from the control
 // points alone.
 //
 // Edge x_i x_j: f restricted to it is the univariate Bernstein polynomial with the k + 1 control

@@ -1,4 +1,4 @@
-// Convexity-preserving smooth absolute value and smooth max (papers/NOTES.md LP-4 b), the
+// Convexity-preserving smooth absolute value and smooth max (docs/maths.md LP-4 b), the
 // alternative to Li & Phillips' S_abs (model/blends/smooth_ops.h), which is neither convex nor monotone.
 //
 //   S^c_abs(t) = -t + 2 * integral_{-inf}^{t} mu_w(s) ds,   mu_w(s) = H_n(s / w),  w > 0

@@ -1,4 +1,4 @@
-// Morph (textbook 22.2 morphing; NOTES.md TB-4) and complement (textbook CSG, TB-1):
+// Morph (textbook 22.2 morphing; docs/maths.md TB-4) and complement (textbook CSG, TB-1):
 //   morph:       m(x) = t f_A(x) + (1 - t) f_B(x),   0 <= t <= 1  (t = 1: A, t = 0: B)
 //   complement:  c(x) = -f_A(x)                        (inside and outside swap)
 // Both are exact in the sense of the project sign (f < 0 inside): the complement of a signed

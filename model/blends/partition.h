@@ -1,4 +1,4 @@
-// Soft space partition on a grid (Li & Phillips eq. 9-11; NOTES.md LP-1), project sign:
+// Soft space partition on a grid (Li & Phillips eq. 9-11; docs/maths.md LP-1), project sign:
 //   f(x) = sum_{ijk} b_i(x_1) b_j(x_2) b_k(x_3) f_ijk(x),
 //   b_i(t) = mu_eps(t - t_i) mu_eps(t_{i+1} - t),   mu_eps(s) = H_n(s / eps),
 // with the cuts t_1 < ... < t_a of each axis, t_0 = -inf, t_{a+1} = +inf (the outer factors are

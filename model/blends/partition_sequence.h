@@ -1,4 +1,4 @@
-// Sequential (BSP-like) soft space partition (Li & Phillips eq. 7-8, 11; NOTES.md LP-1), project
+// Sequential (BSP-like) soft space partition (Li & Phillips eq. 7-8, 11; docs/maths.md LP-1), project
 // sign. Separator planes s_1..s_m (signed distances, negative on their "inside" side) and the
 // steps beta_i = mu_eps(-s_i) = H_n(-s_i / eps) give the telescoping bases
 //   w_0 = 1 - beta_1,  w_j = beta_1 ... beta_j (1 - beta_(j+1)),  w_m = beta_1 ... beta_m,

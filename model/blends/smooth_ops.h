@@ -1,12 +1,12 @@
-// Smooth absolute value, smooth max and the smooth CSG operators of Li & Phillips (papers/000,
-// eq. 4-6), with the slips listed in papers/README.md corrected.
+// Smooth absolute value, smooth max and the smooth CSG operators of Li & Phillips (docs/maths.md LP;
+// eq. 4-6), with the slips of the paper corrected (docs/maths.md).
 //
 //   mu(t)  = H_n(t / eps)                     (rising range eps, 0 < eps <= delta)
 //   g0(t)  = 1 - mu(t + delta),  g1(t) = mu(t + delta) (1 - mu(t - delta)),  g2(t) = mu(t - delta)
 //   S_abs(t) = -g0 t + g1 (t^2 / (2 delta) + delta / 2) + g2 t       (= |t| for |t| >= delta + eps)
 //   S_max(x, y) = (x + y + S_abs(x - y)) / 2                          (>= max(x, y))
 //
-// Project sign convention (DESIGN.md): f < 0 inside. Hence
+// Project sign convention (docs/design.md): f < 0 inside. Hence
 //   union(a, b)        = -S_max(-a, -b)   (smooth min)
 //   intersection(a, b) =  S_max(a, b)
 //   difference(a, b)   =  S_max(a, -b)    (a minus b)

@@ -1,4 +1,4 @@
-// Convexity of a Bernstein mesh on its whole box (NOTES.md G-1), and an independent sampling
+// Convexity of a Bernstein mesh on its whole box (docs/maths.md G-1), and an independent sampling
 // test of it.
 //
 // Theorem (standard convex analysis). If f is C1 on the box (a convex domain, the union of the

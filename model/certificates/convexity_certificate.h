@@ -1,4 +1,4 @@
-// Convexity certificate of a Bernstein patch of degree k >= 2 (Guo §4, generalised; DESIGN.md).
+// Convexity certificate of a Bernstein patch of degree k >= 2 (Guo §4, generalised; docs/design.md).
 //
 // Maths. For every mu with |mu| = k - 2 the symmetric 3x3 matrix
 //   A^mu_ij = b(mu + e_i + e_j) + b(mu + 2 e_4) - b(mu + e_i + e_4) - b(mu + e_j + e_4),  i, j

@@ -1,5 +1,5 @@
 // The additive fields of `implicitfit check --json` and Python check() for issue #12
-// (papers/NOTES.md LP-4 c, G-2, G-3, G-4), kept apart from check_command.cc:
+// (docs/maths.md LP-4 c, G-2, G-3, G-4), kept apart from check_command.cc:
 //   per file:  "tree": {"class", "certified", "domain"} and "nodes": [{"node", "type", "class",
 //              "rule", "domain"}] (model/certificates/tree_certificate.h);
 //   per patch: "min_eigenvalue_cartesian", "hessian_lower_bound" (G-2), "finsler": {"convex",

@@ -1,5 +1,5 @@
 // Certificates of a Bernstein patch beyond the plain A^mu test (model/certificates/convexity_certificate.h):
-// papers/NOTES.md G-2 (label-invariant margin, Hessian bound) and G-4 (tangent-restricted
+// docs/maths.md G-2 (label-invariant margin, Hessian bound) and G-4 (tangent-restricted
 // certificate, patch-localised verdict).
 //
 // G-2. The Cartesian matrices C^mu = E^-T A^mu E^-1 (E = [x1 - x4, x2 - x4, x3 - x4]) do not

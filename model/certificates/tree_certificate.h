@@ -1,4 +1,4 @@
-// Convexity certificate of a whole model tree (papers/NOTES.md LP-4 c), bottom-up by rules.
+// Convexity certificate of a whole model tree (docs/maths.md LP-4 c), bottom-up by rules.
 //
 // Classes, from strongest to weakest:
 //   kConvexFunction  f itself is convex (on `domain`), hence also the solid {f <= 0};

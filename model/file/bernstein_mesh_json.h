@@ -1,8 +1,8 @@
-// JSON form of a bernstein_mesh node (DESIGN.md, additive):
+// JSON form of a bernstein_mesh node (docs/model-file.md, additive):
 //   {"type": "bernstein_mesh", "degree": k, "grid": {"origin": [3], "cell": h, "cells": [3]},
 //    "continuity": 0|1, "control_points": [6 nx ny nz (k+1)(k+2)(k+3)/6 numbers]}
 // Tetrahedra are implied by the Kuhn rule (model/bernstein/bernstein_mesh.h), control points per
-// tetrahedron in DESIGN.md order. Errors are ModelFormatError naming the JSON path.
+// tetrahedron in docs/design.md order. Errors are ModelFormatError naming the JSON path.
 #pragma once
 
 #include <nlohmann/json.hpp>

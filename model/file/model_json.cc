@@ -302,7 +302,7 @@ std::vector<double> ReadFeatureList(const json& node, const std::string& path);
 
 // skeleton_offset {"skeleton": {"points": [[3],...]} | {"segments": [[[3],[3]],...]} |
 //                  {"polyline": [[3],...]} | {"triangles": [[[3],[3],[3]],...]}, "radius": r,
-//                  "features": [...] (optional: NOTES.md CO-2's field mode, R_C = r)}.
+//                  "features": [...] (optional: docs/maths.md CO-2's field mode, R_C = r)}.
 int ReadSkeletonOffset(const json& node, const std::string& path, const std::string& name,
                        Model* model) {
   const std::string where = path + ".skeleton";
@@ -447,7 +447,7 @@ int ReadPartitionSequence(const json& node, const std::string& path, int depth,
 }
 
 // Coleman features [{"point": [3], "width": W, "depth": D, "radius": R, "flare": phi}, ...]
-// (NOTES.md CO-2): W, R > 0, D >= 0, 0 <= phi <= 1; 7 numbers each in parameter order.
+// (docs/maths.md CO-2): W, R > 0, D >= 0, 0 <= phi <= 1; 7 numbers each in parameter order.
 std::vector<double> ReadFeatureList(const json& node, const std::string& path) {
   if (!node.contains("features") || !node.at("features").is_array() || node.at("features").empty())
     Fail(path + ".features", "must be an array of at least 1 feature object");
@@ -510,7 +510,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
   if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
   if (type == NodeType::kColemanFeatures) keys.insert("children");
-  if (type == NodeType::kSkeletonOffset) keys.insert("features");  // NOTES.md CO-2
+  if (type == NodeType::kSkeletonOffset) keys.insert("features");  // docs/maths.md CO-2
   if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
   return keys;
 }

@@ -1,4 +1,4 @@
-// The model file, version 1 (DESIGN.md, a public contract):
+// The model file, version 1 (docs/model-file.md, a public contract):
 //   {"format": "implicitfit-model", "version": 1, "root": NODE}
 // Reading is strict: a missing or unknown field, a wrong type, a non-finite number or an
 // invalid value (radius <= 0, zero axis, epsilon > delta, ...) is refused with a

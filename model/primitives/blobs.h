@@ -1,4 +1,4 @@
-// Blobs (Blinn; textbook 22.2 "blobs", NOTES.md TB-2): m centres c_i with signed weights a_i,
+// Blobs (Blinn; textbook 22.2 "blobs", docs/maths.md TB-2): m centres c_i with signed weights a_i,
 // kernel widths w_i and a threshold T, in the project sign (f < 0 inside)
 //   f(x) = T - sum_i a_i k_i(|x - c_i|).
 // Kernels (w_i > 0):

@@ -1,4 +1,4 @@
-// Box (textbook Fig. 22.1 block; NOTES.md TB-1): centre c, rotation R, half sizes h, f the exact
+// Box (textbook Fig. 22.1 block; docs/maths.md TB-1): centre c, rotation R, half sizes h, f the exact
 // signed distance
 //   y = R^T (x - c),   q_i = |y_i| - h_i,
 //   f = |max(q, 0)| + min(max(q_1, q_2, q_3), 0).

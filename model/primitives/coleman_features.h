@@ -1,4 +1,4 @@
-// Coleman's feature-based shaping (papers/001; NOTES.md CO-2, slips of §2.2 applied), project
+// Coleman's feature-based shaping (docs/maths.md CO-2, slips of §2.2 applied), project
 // sign. The one child's f is a signed distance to the core C (plane, sphere, skeleton_offset,
 // ...); d(x) = max(f(x), 0) and c(x) = x - d(x) grad d(x) its closest core point (grad by central
 // differences of the child, step 1e-6 (1 + |x|)). With the falloff (App. A, one cubic piece, C^1)
@@ -17,7 +17,7 @@
 // f is flat (zero gradient) inside the core's plateau and beyond the falloff: the fitter's
 // residual f / |grad f| is floored there (fit/tree/tree_point_residual.h).
 // Parameters: [R_C, then per feature: f (3), W, D, R, phi] (1 + 7 m).
-// Two JSON forms: NOTES.md CO-2's, features on a skeleton_offset node in field mode (R_C = its
+// Two JSON forms: docs/maths.md CO-2's, features on a skeleton_offset node in field mode (R_C = its
 // "radius", the core its skeleton, c(x) the exact nearest skeleton point: EvaluateOnCore), and
 // the project's coleman_features node over one child that is a signed distance to a solid core
 // (a half-space, a sphere, ...: Evaluate, c(x) by central differences of the child). On the same
@@ -54,7 +54,7 @@ struct ColemanFeatures {
 
   // The same field over a core given by distance(y) = d(y) >= 0 and closest(y, c, n), which
   // sets c = c(y) and n = the unit direction from c(y) to y. A skeleton_offset node with
-  // "features" (NOTES.md CO-2's JSON form) passes its skeleton's exact nearest point
+  // "features" (docs/maths.md CO-2's JSON form) passes its skeleton's exact nearest point
   // (model/primitives/skeleton_offset.h), so no numerical differentiation is involved there.
   template <typename T, typename Distance, typename ClosestPoint>
   static T EvaluateOnCore(int count, const T* p, const T* x, const Distance& distance,
@@ -89,7 +89,7 @@ struct ColemanFeatures {
   }
 
   // Unit direction from c to y, or +z when y == c (a feature point on the core itself: its
-  // direction is undefined; NOTES.md CO-2 puts feature points on the isosurface, d > 0).
+  // direction is undefined; docs/maths.md CO-2 puts feature points on the isosurface, d > 0).
   template <typename T>
   static void DirectionFrom(const T* c, const T* y, T* n) {
     T v[3] = {y[0] - c[0], y[1] - c[1], y[2] - c[2]};

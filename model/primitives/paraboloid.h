@@ -1,4 +1,4 @@
-// Paraboloid of revolution placed by a point and a normal (Li & Phillips §4.1; NOTES.md LP-2):
+// Paraboloid of revolution placed by a point and a normal (Li & Phillips §4.1; docs/maths.md LP-2):
 // vertex P, outward axis a (any non-zero length, n = a / |a|), curvature kappa at the vertex:
 //   u = x - P,  h = n . u = (a . x - a . P) / |a|,  |w|^2 = |u|^2 - h^2 = |a x u|^2 / |a|^2,
 //   f = h + (kappa / 2) |w|^2.

@@ -1,4 +1,4 @@
-// Skeleton offsets (Coleman's offset surfaces in distance form; NOTES.md CO-1): the union of the
+// Skeleton offsets (Coleman's offset surfaces in distance form; docs/maths.md CO-1): the union of the
 // balls of radius r around a skeleton S made of points, segments or a polyline,
 //   f(x) = min_{s in S} d(x, s) - r,
 // the exact signed distance of that union (min of exact distances, each |grad| = 1).
@@ -8,13 +8,13 @@
 //   triangle (a, b, c): d = |x - q|, q = a + s (b - a) + t (c - a) the projection of x onto the
 //                   triangle's plane when s, t >= 0 and s + t <= 1 (n = (b - a) x (c - a),
 //                   s = ((x - a) x (c - a)) . n / |n|^2, t = ((b - a) x (x - a)) . n / |n|^2),
-//                   else the nearest of its three edges (a surface skeleton, NOTES.md CO-1).
+//                   else the nearest of its three edges (a surface skeleton, docs/maths.md CO-1).
 // One segment is a capsule, a polyline a tube. Jets follow the nearest element (the min picks
 // by value; across its switch f is continuous, grad f has a kink on the medial set).
 // Parameters: [skeleton points (3 m), r (1)]; segments store their two end points each
 // (m = 2 x segments), a polyline its vertices, triangles their three corners each (m = 3 x
 // triangles). Closest() also returns the nearest skeleton point: Coleman's features on a
-// skeleton (model/primitives/coleman_features.h, NOTES.md CO-2) need it.
+// skeleton (model/primitives/coleman_features.h, docs/maths.md CO-2) need it.
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The command-line contract of DESIGN.md: --help, --version, exit codes.
+// The command-line contract of docs/cli.md: --help, --version, exit codes.
 #include <gtest/gtest.h>
 
 #include "support/run_command.h"

@@ -1,4 +1,4 @@
-// `implicitfit design` (NOTES.md LP-3), `fit --model partition` (LP-1) and the standard
+// `implicitfit design` (docs/maths.md LP-3), `fit --model partition` (LP-1) and the standard
 // deviations of `fit --model box` end to end: exit codes, outputs, refusals without output.
 #include <gtest/gtest.h>
 

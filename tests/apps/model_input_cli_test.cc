@@ -103,7 +103,7 @@ TEST(ModelInput, ANumberBeyondTheDoubleRangeIsInvalidJsonNamingTheFile) {
 }
 
 // Degree-2 control points of q(x) = |x|^2 - r^2 on the tetrahedron x1..x4:
-// b_{e_i+e_j} = X_i^T G X_j with X_i = (x_i, 1), G = diag(1, 1, 1, -r^2), listed in DESIGN.md
+// b_{e_i+e_j} = X_i^T G X_j with X_i = (x_i, 1), G = diag(1, 1, 1, -r^2), listed in docs/design.md
 // order 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
 std::vector<double> SphereControlPoints(const Eigen::Vector3d x[4], double r) {
   auto g = [&](int i, int j) { return x[i].dot(x[j]) - r * r; };

@@ -1,9 +1,9 @@
 // An independent, deliberately naive Bernstein–Bézier implementation, used only as a test
-// oracle. It shares no code with model/: multi-indices are enumerated here from DESIGN.md's
+// oracle. It shares no code with model/: multi-indices are enumerated here from docs/design.md's
 // wording (lambda1 from k down to 0, then lambda2, then lambda3, lambda4 the rest) and looked up
 // in a std::map; barycentric coordinates solve the 4x4 system [x_i; 1] tau = [x; 1] by
 // Eigen's FullPivLU; f is the explicit multinomial sum k!/prod(lambda_i!) prod tau_i^lambda_i;
-// the A^mu matrices are written out entry by entry from DESIGN.md's formula.
+// the A^mu matrices are written out entry by entry from docs/design.md's formula.
 #pragma once
 
 #include <Eigen/Dense>

@@ -145,7 +145,7 @@ def degree2_patch(control_points):
 
 
 def test_check_against_hand_derived_guo_matrices():
-    # DESIGN.md order for k = 2: 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
+    # docs/design.md order for k = 2: 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
     # b(2e_i) = 1 for i = 1..3, all else 0: A_ij = b(e_i + e_j) + b(2e_4) - b(e_i+e_4) - b(e_j+e_4) = I.
     convex = implicitfit.Model.from_json(degree2_patch([1, 0, 0, 0, 1, 0, 0, 1, 0, 0]))
     report = implicitfit.check(convex)

@@ -1,4 +1,4 @@
-// Recovery tests of the patch-mesh fit (NOTES.md G-1 test 5): clouds sampled from known closed
+// Recovery tests of the patch-mesh fit (docs/maths.md G-1 test 5): clouds sampled from known closed
 // surfaces with normal noise sigma; the fitted zero set is judged by the RMS of f/|grad f| over
 // the cloud and, independently, by the distance of noise-free truth points to the fitted zero
 // set (Newton projection onto f = 0 through the generic Model value and gradient).

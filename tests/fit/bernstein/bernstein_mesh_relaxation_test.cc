@@ -42,7 +42,7 @@ double RmsDistanceAlongNormals(const MeshFitResult& r, const PointCloud& truth) 
 // error of RMS sigma sqrt(p / N) at the data (the trace of the hat matrix is p). p: the C1
 // spline coefficients that the data determine, ~ 0.68 per tetrahedron holding points (the
 // spline space grows by (166 - 88) / (27 - 8) = 4.1 dimensions per cube from the 2x2x2 to the
-// 3x3x3 grid at k = 3, NOTES.md G-1's table, i.e. 0.68 per tetrahedron). The RMS distance to
+// 3x3x3 grid at k = 3, docs/maths.md G-1's table, i.e. 0.68 per tetrahedron). The RMS distance to
 // the truth must stay within 2x that floor (0.25 sigma here; the spline's approximation error
 // adds to it: 0.095 sigma on the noise-free torus). The former refinement (no relaxation,
 // far_field_relaxation = 0) stopped at 0.39 sigma, above the bound: the test fails without the

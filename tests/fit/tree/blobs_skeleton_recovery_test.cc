@@ -1,4 +1,4 @@
-// Recovery of blobs (NOTES.md TB-2 test 3) and of a capsule skeleton offset (CO-1 test 2)
+// Recovery of blobs (docs/maths.md TB-2 test 3) and of a capsule skeleton offset (CO-1 test 2)
 // through the tree fitter, from clouds sampled on the true models.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Recovery of Coleman's feature parameters (NOTES.md CO-2) through the tree fitter.
+// Recovery of Coleman's feature parameters (docs/maths.md CO-2) through the tree fitter.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +12,7 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
-// Coleman's plateau (NOTES.md CO-2): core z <= 0 (a fixed plane), one point feature above the
+// Coleman's plateau (docs/maths.md CO-2): core z <= 0 (a fixed plane), one point feature above the
 // origin, R_C = 0.4, W = 0.3, D = 0.25, R = 0.2. Sampled with sigma = 0.0005; the start is 10%
 // off in R_C, W, D and R; the fit must recover the four within 1%. (The feature point's height
 // and the flare do not change f on a planar core: free, unidentifiable directions the solver's
@@ -47,7 +47,7 @@ TEST(ColemanFeaturesRecovery, PlateauWidthDepthRadiusAndCoreRadiusWithinOnePerce
   EXPECT_NEAR(rr, 0.2, 0.002);
 }
 
-// The same plateau in NOTES.md CO-2's own form (features on a skeleton_offset in field mode;
+// The same plateau in docs/maths.md CO-2's own form (features on a skeleton_offset in field mode;
 // the core a large triangle in z = 0, its corners fixed): R_C (the node's radius), W, D and R
 // recovered within 1% from a start 10% off.
 TEST(ColemanFeaturesRecovery, NotesFormOnATriangleSkeletonWithinOnePercent) {

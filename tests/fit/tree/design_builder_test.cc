@@ -1,4 +1,4 @@
-// Design from oriented points (NOTES.md LP-3): the Fig. 8 analogue (four point/normal pairs of
+// Design from oriented points (docs/maths.md LP-3): the Fig. 8 analogue (four point/normal pairs of
 // a square, z-extruded: each P_j on the zero set to 1e-12 with grad f parallel to n_j, once the
 // precondition "every other child is below -(delta + epsilon) at P_j" is checked), and the
 // builder on generated clouds: a box (its six face normals found, then fit --init to RMS <= 2

@@ -141,7 +141,7 @@ TEST(MorphRecovery, SphereBoxMorphRecoversT) {
   EXPECT_NEAR(t, 0.3, 1e-3);
 }
 
-// Paraboloid cap (NOTES.md LP-2 test 3): kappa = 0.5 and 1, 5000 points, sigma = 0.002, 20%
+// Paraboloid cap (docs/maths.md LP-2 test 3): kappa = 0.5 and 1, 5000 points, sigma = 0.002, 20%
 // outliers; the residual of the bound is the fitter's first-order distance f / |grad f|.
 void ParaboloidRecovery(double kappa, unsigned seed) {
   const Vec v(0.1, -0.2, 0.3), n = Vec(0.2, -0.3, 1).normalized();

@@ -1,4 +1,4 @@
-// `fit --model partition` pipeline (NOTES.md LP-1, Fig. 13 analogue): a 3 x 3 x 2 grid, cubic
+// `fit --model partition` pipeline (docs/maths.md LP-1, Fig. 13 analogue): a 3 x 3 x 2 grid, cubic
 // step, one plane per cell. The truth is a partition model whose cell (i, j, k) holds the plane
 // of outward direction (i - 1, j - 1, 2 k - 1) (normalised) at distance 1 from the origin: a
 // bipyramid-like closed solid with 18 facets, the cuts at x, y = +-0.45 and z = 0. The cloud is

@@ -1,4 +1,4 @@
-// Li & Phillips Fig. 10 analogue (NOTES.md LP-1 test 5), as a z-extrusion: cuts x, y = +-0.5
+// Li & Phillips Fig. 10 analogue (docs/maths.md LP-1 test 5), as a z-extrusion: cuts x, y = +-0.5
 // make nine cells; the eight outer cells hold the lines of an octagon (normals in the xy plane),
 // the centre cell a plane far from the zero set (fixed: it has no points). 5000 samples,
 // sigma = 0.002; the start turns every outer normal by 3 degrees and moves it by 0.05; the fit

@@ -1,4 +1,4 @@
-// Li & Phillips Fig. 4 analogue with a partition_sequence (NOTES.md LP-1, eq. 8), z-extruded.
+// Li & Phillips Fig. 4 analogue with a partition_sequence (docs/maths.md LP-1, eq. 8), z-extruded.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

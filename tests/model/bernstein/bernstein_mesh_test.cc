@@ -1,6 +1,6 @@
 // The bernstein_mesh node (model/bernstein/bernstein_mesh.h) and its continuity rows and spline basis
 // (model/bernstein/bernstein_mesh_continuity.h), against independent expectations: the naive oracle
-// patch, exact polynomials, and the dimension table of NOTES.md G-1.
+// patch, exact polynomials, and the dimension table of docs/maths.md G-1.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -202,7 +202,7 @@ TEST(BernsteinMeshContinuity, SplineBasisIsContinuousAcrossFacesButNotC2) {
 }
 
 // Rank of the C0 (+ C1) rows from the eigenvalues of C^T C (squared singular values), with the
-// gap of NOTES.md G-1 checked (kept singular values >= 7e-3, dropped ones at rounding level).
+// gap of docs/maths.md G-1 checked (kept singular values >= 7e-3, dropped ones at rounding level).
 long long SplineDimension(const BernsteinGrid& g, int k, int continuity) {
   const ContinuityRows rows = BernsteinContinuityRows(g, k, 0, continuity);
   const Eigen::MatrixXd C(rows.C);

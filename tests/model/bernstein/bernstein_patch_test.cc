@@ -1,5 +1,5 @@
 // Bernstein patches (model/bernstein/bernstein_patch.h) against the naive oracle (tests/oracle) and
-// against properties derived by hand: control-point order of DESIGN.md, partition of unity,
+// against properties derived by hand: control-point order of docs/design.md, partition of unity,
 // vertex interpolation, Guo's Lemma 1, derivatives vs central differences, Jets.
 #include "model/bernstein/bernstein_patch.h"
 
@@ -30,7 +30,7 @@ std::vector<double> RandomControlPoints(std::mt19937& rng, int k) {
 }
 
 TEST(BernsteinPatch, ControlPointOrderIsDesignOrder) {
-  // DESIGN.md, k = 2: 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
+  // docs/design.md, k = 2: 2000, 1100, 1010, 1001, 0200, 0110, 0101, 0020, 0011, 0002.
   const std::vector<std::array<int, 4>> k2 = {
       {2, 0, 0, 0}, {1, 1, 0, 0}, {1, 0, 1, 0}, {1, 0, 0, 1}, {0, 2, 0, 0},
       {0, 1, 1, 0}, {0, 1, 0, 1}, {0, 0, 2, 0}, {0, 0, 1, 1}, {0, 0, 0, 2}};

@@ -1,4 +1,4 @@
-// Regression record (papers/NOTES.md §0.3, LP-4 a): Li & Phillips' smooth max S_max is neither
+// Regression record (docs/maths.md §0.3, LP-4 a): Li & Phillips' smooth max S_max is neither
 // convex nor monotone, so a "li-phillips" smooth intersection of convex solids is NOT convex.
 // No code may rely on it; the convexity-preserving blend is "smoothing": "convex"
 // (model/blends/convex_smooth_ops.h). Expected values are the NOTES' (independent numpy scripts).

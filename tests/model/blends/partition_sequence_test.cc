@@ -1,4 +1,4 @@
-// Sequential soft partition by separator planes (NOTES.md LP-1, eq. 7-8): the bases sum to 1
+// Sequential soft partition by separator planes (docs/maths.md LP-1, eq. 7-8): the bases sum to 1
 // for random planes, lie in [0, 1]; a cell's width (twice its inscribed radius) against closed
 // forms; refusal of a cell narrower than 2 epsilon (JSON path and width); f = f_j exactly in the
 // cell's core; JSON round trip and parameter names.

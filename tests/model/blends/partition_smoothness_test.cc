@@ -1,4 +1,4 @@
-// Soft partitions, NOTES.md LP-1 tests 4 (for partition_sequence) and 7 (both kinds):
+// Soft partitions, docs/maths.md LP-1 tests 4 (for partition_sequence) and 7 (both kinds):
 //  - C^(n-1) across a separator's band edge, not C^n: with the cubic step (n = 3) the first and
 //    second derivatives of f agree from both sides, the third jumps by the closed-form amount
 //    (Irwin-Hall: f_3''' steps from 0 to 1 at the support's end, so H_3''' = (3/2)^3 f_3'''

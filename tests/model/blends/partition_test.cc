@@ -1,4 +1,4 @@
-// Soft space partition on a grid (NOTES.md LP-1 tests 1-4): partition of unity of the bases,
+// Soft space partition on a grid (docs/maths.md LP-1 tests 1-4): partition of unity of the bases,
 // refusal of cells narrower than 2 epsilon (with the JSON path and the width), f = f_ijk exactly
 // away from the cuts, and the smoothness across a cut (C^(n-1), not C^n).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Test 4 of NOTES.md G-1: C1 + every tetrahedron certified => convex on the whole box, checked
+// Test 4 of docs/maths.md G-1: C1 + every tetrahedron certified => convex on the whole box, checked
 // by the tangent-plane sampling test across tetrahedra; and the C0 concave-kink control.
 #include "model/certificates/bernstein_mesh_certificate.h"
 

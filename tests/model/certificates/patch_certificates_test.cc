@@ -1,5 +1,5 @@
 // G-2 (label-invariant margin, Hessian bound), G-4 (tangent-restricted certificate,
-// patch-localised verdict) and G-3 (edge sign changes) of papers/NOTES.md. Expected values:
+// patch-localised verdict) and G-3 (edge sign changes) of docs/maths.md. Expected values:
 // matrices built longhand (tests/oracle) and Eigen eigenvalues, Hessians from
 // BernsteinPatch::Derivatives, the sampling tangent-plane test, dense sign scans, closed forms.
 #include "model/certificates/patch_certificates.h"

@@ -1,4 +1,4 @@
-// The bernstein_patch node of the model file (DESIGN.md): exact round trip and strict refusal
+// The bernstein_patch node of the model file (docs/model-file.md): exact round trip and strict refusal
 // of invalid nodes, naming the JSON path.
 #include <gtest/gtest.h>
 

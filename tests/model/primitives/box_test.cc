@@ -1,5 +1,5 @@
 // Box (exact SDF) and complement: closed forms derived here from the geometry, the JSON form of
-// NOTES.md TB-1, and the agreement with the sharp intersection of the six face planes (which is
+// docs/maths.md TB-1, and the agreement with the sharp intersection of the six face planes (which is
 // exact inside, and a lower bound outside).
 #include <gtest/gtest.h>
 

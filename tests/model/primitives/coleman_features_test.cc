@@ -1,4 +1,4 @@
-// Coleman's features (NOTES.md CO-2): the plateau closed form (core z <= 0, a point feature
+// Coleman's features (docs/maths.md CO-2): the plateau closed form (core z <= 0, a point feature
 // above the origin, iso 1/2): the zero set is z = R_C + D + W + R/2 for rho <= W and z = R_C/2
 // for rho >= W + R, found by bisection along z to 1e-12, for flare 0, 1/2 and 1 (no effect on a
 // planar core); the falloff's closed form; Jet derivatives against central differences; JSON.

@@ -1,4 +1,4 @@
-// Coleman's features in NOTES.md CO-2's own JSON form: "features" on a skeleton_offset node in
+// Coleman's features in docs/maths.md CO-2's own JSON form: "features" on a skeleton_offset node in
 // field mode (i = s(d; 0, R_C), R_C = the node's "radius", iso 1/2). The model is loaded from a
 // JSON text written by hand from the notes, and checked against the notes' closed form: core =
 // the plane z = 0 (here a large triangle skeleton: d = z above it, as for the half-space), a
@@ -23,7 +23,7 @@ namespace {
 using Vec = Eigen::Vector3d;
 using nlohmann::json;
 
-// Written from NOTES.md CO-2 (node fields) and CO-1 (the triangles skeleton), not from the code.
+// Written from docs/maths.md CO-2 (node fields) and CO-1 (the triangles skeleton), not from the code.
 constexpr const char* kNotesModel = R"({
   "format": "implicitfit-model", "version": 1,
   "root": {

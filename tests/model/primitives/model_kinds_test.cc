@@ -1,6 +1,6 @@
 // The typed property suite (as tests/model/primitives/primitives_test.cc, manif style) for the node kinds
 // of issue 16: box, complement, morph, paraboloid, blobs, skeleton offsets (capsule, tube,
-// triangle), soft partitions (grid, sequence), Coleman's features (NOTES.md CO-2 form and
+// triangle), soft partitions (grid, sequence), Coleman's features (docs/maths.md CO-2 form and
 // coleman_features). Each
 // kind builds its model and samples surface points from its own parametric form (written here,
 // independently of the evaluator):
@@ -186,7 +186,7 @@ struct PartitionSequenceKind : PartitionKindBase {
   }
 };
 
-// A triangle skeleton (NOTES.md CO-1's surface skeleton), radius 0.3: points on the two face
+// A triangle skeleton (docs/maths.md CO-1's surface skeleton), radius 0.3: points on the two face
 // sheets (projection inside the triangle, 0.05 from its edges) and on the edge tubes (the
 // half-circles on the side away from the triangle, 5% from the corners). Exact distance.
 struct TriangleSkeletonKind {
@@ -226,7 +226,7 @@ struct TriangleSkeletonKind {
   }
 };
 
-// Coleman's features (NOTES.md CO-2) over the planar core z = 0 with one point feature above
+// Coleman's features (docs/maths.md CO-2) over the planar core z = 0 with one point feature above
 // the origin (R_C 0.4, W 0.3, D 0.25, R 0.2, flare 0.5). Surface points from the closed form:
 // the plateau top z = R_C + D + W + R/2 for rho <= W (here rho <= W - 0.02) and z = R_C / 2 for
 // rho >= W + R (here from W + R + 0.02 to 1.5), normal +z in both (f depends on z only there).
@@ -246,7 +246,7 @@ struct ColemanPlateauBase {
     return {Vec(rho * std::cos(theta), rho * std::sin(theta), z), Vec(0, 0, 1)};
   }
 };
-// NOTES.md CO-2's own JSON form: the features on a skeleton_offset in field mode, the core a
+// docs/maths.md CO-2's own JSON form: the features on a skeleton_offset in field mode, the core a
 // large triangle in z = 0 (a surface skeleton: d = |z| above it, as the half-space's d = z).
 // The nearest core point is exact (model/primitives/skeleton_offset.h): Jets match to 1e-7 like every kind.
 struct ColemanSkeletonKind : ColemanPlateauBase {

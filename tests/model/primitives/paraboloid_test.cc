@@ -1,4 +1,4 @@
-// Paraboloid (NOTES.md LP-2) and the plane's point+normal input form: closed forms derived
+// Paraboloid (docs/maths.md LP-2) and the plane's point+normal input form: closed forms derived
 // here, kappa = 0 against the plane, the sign of the curvature, the JSON forms of the notes.
 #include <gtest/gtest.h>
 

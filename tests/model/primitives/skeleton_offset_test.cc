@@ -1,4 +1,4 @@
-// Skeleton offsets (NOTES.md CO-1): one point is the sphere bit for bit, a capsule's distances
+// Skeleton offsets (docs/maths.md CO-1): one point is the sphere bit for bit, a capsule's distances
 // in closed form, a polyline is the union of its segments' capsules, and the JSON forms.
 #include <gtest/gtest.h>
 
@@ -78,7 +78,7 @@ TEST(SkeletonOffset, RefusesEmptyOrAmbiguousSkeletons) {
   EXPECT_THROW(
       Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]]}, "radius": -1})"),
       ModelFormatError);
-  // Triangles (NOTES.md CO-1's surface skeleton) load; a triangle needs three corners, and an
+  // Triangles (docs/maths.md CO-1's surface skeleton) load; a triangle needs three corners, and an
   // unknown skeleton kind is refused.
   EXPECT_NO_THROW(Load(
       R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}, "radius": 1})"));
