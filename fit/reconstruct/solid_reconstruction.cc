@@ -555,7 +555,9 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   out.bounded = true;
   for (const Vec& x : shell) out.bounded = out.bounded && out.model.Value(x) > 0;
 
-  const std::vector<double> sd = TreeStandardDeviations(out.model, inlier_points);
+  // Deviations of the refitted parameters only (blends and the primitives below them).
+  const std::vector<double> sd =
+      TreeStandardDeviations(out.model, inlier_points, FreeParameterColumns(out.model));
   for (int o : smooth) {
     const ModelNode& node = out.model.nodes()[o];
     BlendEstimate b;
