@@ -27,9 +27,15 @@ std::vector<NodeType> DetectionKindsFromList(const std::string& list) {
 }
 
 CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options) {
-  CloudDetection d;
   std::string normals_action;
-  d.cloud = ReadOrientedCloud(path, &normals_action);
+  PointCloud cloud = ReadOrientedCloud(path, &normals_action);
+  return DetectCloud(std::move(cloud), path, normals_action, options);
+}
+
+CloudDetection DetectCloud(PointCloud cloud, const std::string& path,
+                           const std::string& normals_action, const DetectionOptions& options) {
+  CloudDetection d;
+  d.cloud = std::move(cloud);
   const size_t N = d.cloud.size();
   d.scene.cloud = path;
   d.scene.points = static_cast<int>(N);

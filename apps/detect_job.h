@@ -27,6 +27,10 @@ struct CloudDetection {
 
 // Throws InputError (naming the file) when the cloud cannot be read.
 CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options);
+// The same on a cloud already read (oriented normals, or none: degenerate); `path` names it in
+// the scene and report, `normals_action` says where its normals came from.
+CloudDetection DetectCloud(PointCloud cloud, const std::string& path,
+                           const std::string& normals_action, const DetectionOptions& options);
 
 // "plane,cylinder" -> kinds; InputError naming the unknown kind.
 std::vector<NodeType> DetectionKindsFromList(const std::string& list);

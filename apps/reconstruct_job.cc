@@ -69,39 +69,54 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   return j;
 }
 
+// The solid of the primitives, and the report.
+void Finish(unsigned seed, CloudReconstruction* out) {
+  if (out->primitives.empty()) {
+    out->result.message = "detect found no primitive";
+  } else if (!out->cloud.has_normals()) {
+    out->result.message = "no normals (" + out->normals + ")";
+  } else {
+    SolidReconstructionOptions options;
+    options.seed = seed;
+    out->result =
+        ReconstructSolid(out->cloud.points, out->cloud.normals, out->primitives, options);
+  }
+  out->report = Report(out->result, out->cloud, out->normals, out->primitives);
+}
+
 }  // namespace
 
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
                                          const std::string& scene_path, unsigned seed) {
+  std::string normals;
+  PointCloud cloud = ReadOrientedCloud(cloud_path, &normals);
+  if (scene_path.empty()) return ReconstructCloud(std::move(cloud), cloud_path, normals, seed);
   CloudReconstruction out;
-  out.cloud = ReadOrientedCloud(cloud_path, &out.normals);
-  if (scene_path.empty()) {
-    // detect on the same file with its defaults; the cloud it read carries the normals it used.
-    DetectionOptions options;
-    options.seed = seed;
-    CloudDetection detection = DetectCloudFile(cloud_path, options);
-    out.cloud = std::move(detection.cloud);
-    out.primitives = PrimitivesOfScene(detection.scene);
-    out.detected = true;
-  } else {
-    const Scene scene = ReadSceneFile(scene_path);
-    if (scene.points > 0 && static_cast<size_t>(scene.points) != out.cloud.size())
-      throw InputError(scene_path + ": scene is of a cloud of " + std::to_string(scene.points) +
-                       " points, " + cloud_path + " has " + std::to_string(out.cloud.size()));
-    if (scene.primitives.empty()) throw InputError(scene_path + ": no primitives");
-    if (scene.primitives.size() > 64) throw InputError(scene_path + ": more than 64 primitives");
-    out.primitives = PrimitivesOfScene(scene);
-  }
-  if (out.primitives.empty()) {
-    out.result.message = "detect found no primitive";
-  } else if (!out.cloud.has_normals()) {
-    out.result.message = "no normals (" + out.normals + ")";
-  } else {
-    SolidReconstructionOptions options;
-    options.seed = seed;
-    out.result = ReconstructSolid(out.cloud.points, out.cloud.normals, out.primitives, options);
-  }
-  out.report = Report(out.result, out.cloud, out.normals, out.primitives);
+  out.cloud = std::move(cloud);
+  out.normals = normals;
+  const Scene scene = ReadSceneFile(scene_path);
+  if (scene.points > 0 && static_cast<size_t>(scene.points) != out.cloud.size())
+    throw InputError(scene_path + ": scene is of a cloud of " + std::to_string(scene.points) +
+                     " points, " + cloud_path + " has " + std::to_string(out.cloud.size()));
+  if (scene.primitives.empty()) throw InputError(scene_path + ": no primitives");
+  if (scene.primitives.size() > 64) throw InputError(scene_path + ": more than 64 primitives");
+  out.primitives = PrimitivesOfScene(scene);
+  Finish(seed, &out);
+  return out;
+}
+
+CloudReconstruction ReconstructCloud(PointCloud cloud, const std::string& name,
+                                     const std::string& normals, unsigned seed) {
+  CloudReconstruction out;
+  out.normals = normals;
+  // detect with its defaults and the same seed, on the cloud as given.
+  DetectionOptions options;
+  options.seed = seed;
+  CloudDetection detection = DetectCloud(std::move(cloud), name, normals, options);
+  out.cloud = std::move(detection.cloud);
+  out.primitives = PrimitivesOfScene(detection.scene);
+  out.detected = true;
+  Finish(seed, &out);
   return out;
 }
 

@@ -32,5 +32,10 @@ struct CloudReconstruction {
 // its reason in result.message (and the report).
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
                                          const std::string& scene_path, unsigned seed);
+// The same without a scene on a cloud already read (`name` for the report; normals oriented,
+// e.g. by datasets/normals/normal_estimation.h, and `normals` saying how): detect, then the
+// solid. The end-to-end path of a raw scan.
+CloudReconstruction ReconstructCloud(PointCloud cloud, const std::string& name,
+                                     const std::string& normals, unsigned seed);
 
 }  // namespace implicitfit

@@ -11,6 +11,7 @@
 #include "fit/reconstruct/csg_separation.h"
 #include "fit/reconstruct/fillet_separators.h"
 #include "fit/reconstruct/offset_samples.h"
+#include "fit/reconstruct/point_assignment.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/reconstruct/solid_bounding.h"
 #include "fit/tree/tree_covariance.h"
@@ -151,29 +152,22 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     prim[k] = primitives[k].model;
     tau[k] = std::max(3.0 * primitives[k].rms, 1e-3 * diag);
   }
-  std::vector<int> label(N, -1);
-  std::vector<double> side_vote(K, 0.0);
-  out.assigned.assign(K, 0);
-  for (size_t i = 0; i < N; ++i) {
-    double best = 1.0;
-    for (int k = 0; k < K; ++k) {
-      double f;
-      const Vec g = prim[k].Gradient(points[i], &f);
-      const double gn = g.norm();
-      if (!(gn > 0) || !std::isfinite(f)) continue;
-      const double d = std::abs(f) / gn / tau[k];
-      if (d < best && std::abs(g.dot(normals[i])) >= 0.8 * gn) {
-        best = d;
-        label[i] = k;
-      }
-    }
-    if (label[i] >= 0) {
-      ++out.assigned[label[i]];
-      side_vote[label[i]] += prim[label[i]].Gradient(points[i]).dot(normals[i]) > 0 ? 1 : -1;
-    } else {
-      ++out.unassigned;
-    }
+  // Crease bands that detect fitted with extra surfaces are dropped, their points assigned
+  // again (fit/reconstruct/point_assignment.h).
+  std::vector<bool> active(K, true);
+  PointAssignment assignment = AssignPoints(points, normals, prim, tau, active);
+  if (options.drop_redundant) {
+    std::vector<double> band(K);
+    for (int k = 0; k < K; ++k)
+      band[k] = std::max(2.5 * primitives[k].rms, options.redundant_floor * diag);
+    if (DropRedundantPrimitives(points, prim, band, assignment, options.redundant_share,
+                                &active) > 0)
+      assignment = AssignPoints(points, normals, prim, tau, active);
   }
+  const std::vector<int>& label = assignment.label;
+  const std::vector<double>& side_vote = assignment.side_vote;
+  out.assigned = assignment.assigned;
+  out.unassigned = assignment.unassigned;
   // 2. Orientation: planes flipped to their material side; other kinds keep f and say hole.
   out.sides.assign(K, "unused");
   for (int k = 0; k < K; ++k) {
@@ -206,13 +200,23 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
   std::vector<int> literal_kind(K, 0);  // 0 primitive, 1 separator, 2 closure
   std::vector<PlaneLiteral> literal_plane(K);
+  // Primitives without points (redundant or unused) are no literals: their sign bits stay 0.
+  std::vector<bool> literal_on(K);
+  std::vector<Model> used_prim;
+  std::vector<int> used_index(K, -1);
+  for (int k = 0; k < K; ++k) {
+    literal_on[k] = out.sides[k] != "unused";
+    if (!literal_on[k]) continue;
+    used_index[k] = static_cast<int>(used_prim.size());
+    used_prim.push_back(prim[k]);
+  }
   // Samples: positions, inside flags, sign vectors over the literals.
   std::vector<Vec> sx;
   std::vector<bool> sin;
   const double t = options.offset * diag;
   for (size_t i : assigned_points) {
-    const OffsetSamplePair pair =
-        OffsetSamples(points[i], normals[i], label[i], prim, t, options.adaptive_offset);
+    const OffsetSamplePair pair = OffsetSamples(points[i], normals[i], used_index[label[i]],
+                                                used_prim, t, options.adaptive_offset);
     sx.push_back(pair.inside);
     sin.push_back(true);
     sx.push_back(pair.outside);
@@ -241,6 +245,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     return s < offset_samples ? sx[s] : shell[s - offset_samples];
   };
   auto set_literal_bits = [&](int k) {
+    if (k < K && !literal_on[k]) return;
     for (size_t s = 0; s < signs.size(); ++s)
       if (lit[k].Value(sample_at(s)) < 0) signs[s] |= 1ULL << k;
   };
@@ -332,7 +337,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
       if (!(tree.Value(x) > 0)) return false;
     return true;
   };
-  const std::vector<Vec> directions = SeparatorDirections(prim);
+  const std::vector<Vec> directions = SeparatorDirections(used_prim);
   const int min_conflict =
       std::max(options.min_conflict_samples,
                static_cast<int>(std::ceil(options.min_conflict_fraction * signs.size())));
@@ -403,7 +408,8 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     for (size_t s = offset_samples; s < signs.size(); ++s) {
       signs[s] = 0;
       for (int k = 0; k < static_cast<int>(lit.size()); ++k)
-        if (lit[k].Value(shell[s - offset_samples]) < 0) signs[s] |= 1ULL << k;
+        if ((k >= K || literal_on[k]) && lit[k].Value(shell[s - offset_samples]) < 0)
+          signs[s] |= 1ULL << k;
     }
     for (const PlaneLiteral& f : faces) add_plane_literal(f, 2);
   }

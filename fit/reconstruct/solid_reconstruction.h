@@ -57,6 +57,12 @@ struct SolidReconstructionOptions {
   // A torus (a hole: concave fillet; solid: convex fillet) brings the box of revolution of its
   // points as separators (fit/reconstruct/fillet_separators.h).
   bool fillet_separators = true;
+  // Drop the primitives whose points lie on larger ones (crease bands that detect fitted with
+  // extra surfaces: fit/reconstruct/point_assignment.h): share of their points within
+  // max(2.5 rms, redundant_floor of the diagonal) of the larger primitives.
+  bool drop_redundant = true;
+  double redundant_share = 0.9;
+  double redundant_floor = 1e-4;
   int min_transition_points = 20;          // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
