@@ -3,7 +3,8 @@
 
 Checks, over the source tree given as the first argument (default: this file's repository):
   1. every citation `maths.md ID` (ID such as LP-1, G-4, CO-2, TB-3, JE-1) names a section
-     heading of docs/maths.md, and "ID test N" / "ID tests N-M" name checks that section lists;
+     heading of docs/maths.md, `maths.md, "Title"` names one of its headings, and "ID test N" /
+     "ID tests N-M" name checks that section lists;
   2. no file cites a document outside the repository: no DESIGN.md, NOTES.md or papers/, and
      ../shared only as ../shared/data (the optional real scans, which tests skip when absent);
   3. every relative link [text](target#anchor) of the Markdown files resolves to a file of the
@@ -55,6 +56,7 @@ def main():
     sections = {}  # ID -> text of its section
     for m in re.finditer(r"^## (" + ID + r")\b.*?(?=^## |\Z)", text, re.M | re.S):
         sections[m.group(1)] = m.group(0)
+    titles = set(headings(maths))
     for rel, path in files():
         if rel == THIS:
             continue
@@ -72,9 +74,14 @@ def main():
                     problems.append("%s: cites %s outside the repository" % (where, m.group(0)))
             if "maths.md" in line and rel != "docs/maths.md":
                 tail = line[line.index("maths.md"):]
+                if tail.rstrip().endswith(",") and n < len(lines):  # cited title on the next line
+                    tail = tail.rstrip() + " " + re.sub(r"^\s*(//|#)?\s*", "", lines[n])
                 for cid in re.findall(ID, tail):
                     if cid not in sections:
                         problems.append("%s: docs/maths.md has no section %s" % (where, cid))
+                for name in re.findall(r'^maths\.md,\s*\\?"([^"\\]+)', tail):
+                    if name not in titles:
+                        problems.append('%s: docs/maths.md has no section "%s"' % (where, name))
                 for m in re.finditer(r"(" + ID + r")(?:'s)? tests? (\d+)(?:\s*[-–]\s*(\d+))?", tail):
                     cid, first, last = m.group(1), int(m.group(2)), int(m.group(3) or m.group(2))
                     for k in range(first, last + 1):
