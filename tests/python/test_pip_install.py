@@ -41,9 +41,14 @@ print(version)
 """
 
 
-def clean_environment():
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV", "PIP_INDEX_URL")}
+def clean_environment(preload=False):
+    """The environment without the build tree's module path; the sanitizer runtimes that CTest
+    preloads (an instrumented module needs them) only for the interpreter that imports it, not for
+    pip and the CMake build it runs."""
+    drop = {"PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV", "PIP_INDEX_URL"}
+    if not preload:
+        drop |= {"LD_PRELOAD", "ASAN_OPTIONS"}
+    env = {k: v for k, v in os.environ.items() if k not in drop}
     env["PIP_NO_INPUT"] = "1"
     env["PIP_DISABLE_PIP_VERSION_CHECK"] = "1"
     env["IMPLICITFIT_BUILD_DIR"] = BUILD
@@ -68,7 +73,8 @@ def test_pip_installs_the_module_offline_into_a_virtual_environment(tmp_path):
     python = Path(sys.executable)
     run([python, "-m", "venv", "--system-site-packages", venv], tmp_path, env)
     run([venv / "bin" / "pip", "install", "--no-build-isolation", "--no-index", "."], src, env)
-    version = run([venv / "bin" / "python", "-c", CHECK], tmp_path, env).strip()
+    version = run([venv / "bin" / "python", "-c", CHECK], tmp_path,
+                  clean_environment(preload=True)).strip()
     assert version == implicitfit.__version__
     # The copy of the sources is untouched but for the build folder setup.py owns.
     assert sorted(p.name for p in src.iterdir()) == sorted(
