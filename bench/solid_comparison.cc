@@ -1,15 +1,25 @@
 // implicitfit reconstruct + mesh vs Poisson surface reconstruction (PCL's pcl::Poisson and
-// CGAL 5.5's poisson_surface_reconstruction_delaunay) on the same clouds, in one run (issue 14).
-// Clouds:
-//   generated solids (datasets/generators/generated_solids.h) sampled with noise 0.2% of their size
-//     (--outliers adds uniform outliers); truth: the model (first-order distance |f| / |grad f|,
-//     normal grad f / |grad f|); truth samples: noise-free samples of it;
-//   the Fit4CAD parts (../shared/data/fit4cad, GPL-3, read only; no normals: estimated and
-//     oriented by datasets/normals/normal_estimation.h); truth: each labelled point's ground-truth
-//     surface (planes and quadrics: the implicit equation; tori: the exact torus distance, the
-//     torus read from the parametric file by datasets/generators/fit4cad_torus.h);
-//   CGAL's box-on-ground scan (exact outward normals, no labels); truth: the tangent plane of
-//     each point (its faces are planar).
+// CGAL 5.5's poisson_surface_reconstruction_delaunay) on the same clouds and the same normals, in
+// one run.
+// Clouds (bench/solid_cases.h):
+//   generated solids (datasets/generators/generated_solids.h: the three of issue 14 and three
+//     parts) sampled with noise 0.2% of their size (--outliers adds uniform outliers); truth: the
+//     model (first-order distance |f| / |grad f|, normal grad f / |grad f|); truth samples:
+//     noise-free samples of it. Two clouds each: exact normals, implicitfit started from
+//     primitives fitted to ground-truth labels (diagnostic rows, `--labels 0` leaves them out),
+//     and points only (normals stripped, estimated and oriented: datasets/normals/
+//     normal_estimation.h), implicitfit end to end;
+//   the Fit4CAD parts (../shared/data/fit4cad, GPL-3, read only; points and labels, no normals:
+//     estimated and oriented as `reconstruct` does, for every method); truth: each labelled
+//     point's ground-truth surface (planes and quadrics: the implicit equation; tori: the exact
+//     torus distance, the torus read from the parametric file by
+//     datasets/generators/fit4cad_torus.h); implicitfit from the labels (diagnostic) and end to end;
+//   CGAL's box-on-ground scan (exact outward normals, no labels): with the file's normals
+//     (detect first, diagnostic) and points only (normals estimated); truth: the tangent plane of
+//     each point (its faces are planar);
+//   the Kinect milk carton of datasets/data (points only; normals estimated and oriented toward
+//     the PCD's viewpoint, as `reconstruct` does); truth: each point's tangent plane from those
+//     normals (no CAD truth: the figures measure agreement with the scan).
 //   For the real clouds, the distance of x to the truth is the least, over its 16 nearest truth
 //   points p, of: e, the first-order distance of x to p's surface (equation or tangent plane),
 //   when x projects onto that surface within twice the local sampling radius of p
@@ -18,37 +28,35 @@
 //   extended by less than that is still caught from the other side, truth -> mesh, by the
 //   neighbouring face), else |x - p| (x is beyond the sampled part of p's surface). Truth
 //   samples: the points.
-// implicitfit starts from primitives fitted to ground-truth labels (generated solids, Fit4CAD;
-// as detect would give) or from `detect` (the box, unlabelled), then reconstruct and mesh (256
-// cells on the longest side of the cloud's box enlarged by 10%, --cells: the finest grid of
-// PCL's Poisson at depth 8). When reconstruct closed an open scan, a second row judges the mesh
-// without its faces on closure planes (fit/reconstruct/solid_bounding.h: not measured). Figures: Chamfer
-// distance (mean of the two directed mean distances: mesh -> truth at 50 000 area-uniform mesh
-// points, truth -> mesh by exact point-triangle distance from the truth samples), Hausdorff
-// distance (largest of both), normal consistency (mean of n_face . n_truth, signed: 1 is perfect,
-// orientation included), watertightness (edges not in exactly two triangles), time (reconstruction
-// + meshing; Poisson: its reconstruction). The last columns give implicitfit / the best Poisson
-// figure.
+// End to end is apps/reconstruct_job.h's ReconstructCloud, what `reconstruct CLOUD` runs after
+// reading the cloud: detect, orientation, CSG, fit; then the mesh (256 cells on the longest side
+// of the meshing box, --cells: the finest grid of PCL's Poisson at depth 8; the generated
+// solids' box, or the cloud's box enlarged by 10%). When reconstruct closed an open scan, a
+// second row judges the mesh without its faces on closure planes (fit/reconstruct/
+// solid_bounding.h: not measured). Figures: Chamfer distance (mean of the two directed mean
+// distances: mesh -> truth at 50 000 area-uniform mesh points, truth -> mesh by exact
+// point-triangle distance from the truth samples), Hausdorff distance (largest of both), normal
+// consistency (mean of n_face . n_truth, signed: 1 is perfect, orientation included), connected
+// components of the mesh (triangles sharing vertices), watertightness (edges not in exactly two
+// triangles), bounded (implicitfit: f > 0 at every point of a 33 x 33 grid on the faces of boxes
+// 1.5, 10 and 1000 times the cloud's box, a far-field check of the model itself, which the mesh
+// box would hide), time (implicitfit: detect, reconstruction and meshing, not the normals, which
+// every method is given; Poisson: its reconstruction). The last column gives implicitfit / the
+// best Poisson figure on the same cloud and normals.
 //   build/bench/solid_comparison [--points 20000] [--outliers 0] [--seed 1] [--only NAME]
 //                                [--cells 256] [--fit-iterations n] [--no-poisson 1]
-//                                [--fixed-offset 1]
+//                                [--fixed-offset 1] [--labels 0]
 // stderr: each implicitfit expression and where its Hausdorff distance is reached.
-#include <pcl/PolygonMesh.h>
-#include <pcl/conversions.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
-#include <pcl/surface/poisson.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <functional>
-#include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -57,17 +65,15 @@
 #ifdef IMPLICITFIT_HAVE_CGAL_POISSON
 #include "bench/cgal_poisson.h"
 #endif
-#include "datasets/clouds/cloud_file.h"
-#include "datasets/generators/fit4cad_torus.h"
-#include "datasets/generators/generated_solids.h"
-#include "datasets/generators/ground_truth.h"
+#include "bench/mesh_judging.h"
+#include "bench/solid_cases.h"
 #include "datasets/meshing/model_mesher.h"
-#include "datasets/generators/model_sampler.h"
-#include "datasets/normals/normal_estimation.h"
 #include "fit/reconstruct/solid_reconstruction.h"
 
 namespace {
 
+using bench::SolidCloud;
+using bench::TruthDistance;
 using implicitfit::TriangleMesh;
 using Vec = Eigen::Vector3d;
 
@@ -97,28 +103,38 @@ Vec ClosestOnTriangle(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-// The true surface: distance of a point to it and its outward unit normal there.
-using TruthDistance = std::function<double(const Vec& x, Vec* normal)>;
-
-struct Case {
-  std::string name;
-  std::vector<Vec> points, normals;                     // the oriented cloud
-  std::vector<implicitfit::SolidPrimitive> primitives;  // empty: detect (apps/detect_job.h)
-  std::string cloud_path;                               // for detect
-  TruthDistance truth;
-  std::vector<Vec> truth_points;
-  Vec box_min, box_max;  // the meshing box
-  double size = 1.0;     // longest side of the cloud's bounding box
-};
-
 struct Figures {
   double chamfer = 0, hausdorff = 0, normal_consistency = 0, seconds = 0;
   long bad_edges = 0;
+  int components = 0;
   size_t triangles = 0;
   bool ok = false;
+  std::string bounded = "-";   // implicitfit: "yes" / "no (n points)"
   Vec worst = Vec::Zero();     // where the Hausdorff distance is reached
   bool worst_on_mesh = false;  // ... at a mesh point (mesh -> truth) or a truth point
 };
+
+// Connected components of the mesh: triangles joined through shared vertices (union-find).
+int Components(const TriangleMesh& mesh) {
+  std::vector<int> parent(mesh.vertices.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    parent[find(t[1])] = find(t[0]);
+    parent[find(t[2])] = find(t[0]);
+  }
+  std::vector<bool> root(mesh.vertices.size(), false);
+  int count = 0;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const int r = find(t[0]);
+    if (!root[r]) ++count;
+    root[r] = true;
+  }
+  return count;
+}
 
 Figures Judge(const TriangleMesh& mesh, const TruthDistance& truth,
               const std::vector<Vec>& truth_points, unsigned seed) {
@@ -131,6 +147,7 @@ Figures Judge(const TriangleMesh& mesh, const TruthDistance& truth,
     for (int k = 0; k < 3; ++k)
       ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
   for (const auto& [e, n] : uses) fig.bad_edges += n != 2;
+  fig.components = Components(mesh);
   // mesh -> truth at area-uniform mesh points.
   std::vector<double> cumulative;
   double area = 0;
@@ -201,23 +218,12 @@ Figures Judge(const TriangleMesh& mesh, const TruthDistance& truth,
   return fig;
 }
 
-TriangleMesh FromPcl(const pcl::PolygonMesh& poly) {
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  pcl::fromPCLPointCloud2(poly.cloud, cloud);
-  TriangleMesh mesh;
-  for (const auto& p : cloud) mesh.vertices.emplace_back(p.x, p.y, p.z);
-  mesh.normals.assign(mesh.vertices.size(), Vec::UnitZ());
-  for (const auto& v : poly.polygons)
-    for (size_t k = 1; k + 1 < v.vertices.size(); ++k)
-      mesh.triangles.emplace_back(v.vertices[0], v.vertices[k], v.vertices[k + 1]);
-  return mesh;
-}
-
-void Row(const std::string& cloud, const std::string& method, const Figures& f, double size,
-         const Figures* best_poisson = nullptr) {
+void Row(const std::string& cloud, const std::string& start, const std::string& method,
+         const Figures& f, double size, const Figures* best_poisson = nullptr) {
   if (!f.ok) {
-    std::printf("| %s | %s | failed | | | | | %.2f | |\n", cloud.c_str(), method.c_str(),
-                f.seconds);
+    std::printf("| %s | %s | %s | failed | | | | | | | %.2f | |\n", cloud.c_str(), start.c_str(),
+                method.c_str(), f.seconds);
+    std::fflush(stdout);
     return;
   }
   std::string ratio;
@@ -227,242 +233,70 @@ void Row(const std::string& cloud, const std::string& method, const Figures& f, 
                   f.hausdorff / best_poisson->hausdorff);
     ratio = buffer;
   }
-  std::printf("| %s | %s | %.5f (%.2e) | %.5f (%.2e) | %.4f | %s (%ld) | %zu | %.2f | %s |\n",
-              cloud.c_str(), method.c_str(), f.chamfer, f.chamfer / size, f.hausdorff,
-              f.hausdorff / size, f.normal_consistency, f.bad_edges ? "no" : "yes", f.bad_edges,
-              f.triangles, f.seconds, ratio.c_str());
+  std::printf(
+      "| %s | %s | %s | %.5f (%.2e) | %.5f (%.2e) | %.4f | %d | %s (%ld) | %s | %zu | %.2f | %s "
+      "|\n",
+      cloud.c_str(), start.c_str(), method.c_str(), f.chamfer, f.chamfer / size, f.hausdorff,
+      f.hausdorff / size, f.normal_consistency, f.components, f.bad_edges ? "no" : "yes",
+      f.bad_edges, f.bounded.c_str(), f.triangles, f.seconds, ratio.c_str());
   std::fflush(stdout);
 }
 
-void BoundingBox(const std::vector<Vec>& points, Vec* lo, Vec* hi) {
-  *lo = *hi = points[0];
-  for (const Vec& p : points) {
-    *lo = lo->cwiseMin(p);
-    *hi = hi->cwiseMax(p);
+// Grid points on the faces of boxes 1.5, 10 and 1000 times the cloud's box where f <= 0.
+int NonPositiveFarAway(const implicitfit::Model& m, const std::vector<Vec>& points) {
+  Vec lo = points[0], hi = points[0];
+  for (const Vec& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Vec c = 0.5 * (lo + hi);
+  const int n = 32;
+  int bad = 0;
+  for (const double scale : {1.5, 10.0, 1000.0}) {
+    const Vec h = 0.5 * scale * (hi - lo);
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double side : {-1.0, 1.0})
+        for (int u = 0; u <= n; ++u)
+          for (int v = 0; v <= n; ++v) {
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            Vec x;
+            x[axis] = c[axis] + side * h[axis];
+            x[a1] = c[a1] + h[a1] * (2.0 * u / n - 1);
+            x[a2] = c[a2] + h[a2] * (2.0 * v / n - 1);
+            bad += !(m.Value(x) > 0);
+          }
   }
-}
-
-// Truth of a real cloud (header): nearest truth point, its surface (equation or tangent plane).
-struct PointTruth {
-  std::vector<Vec> points, normals;                              // oriented truth points
-  std::vector<std::function<double(const Vec&, Vec*)>> surface;  // per point: signed e, grad
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-
-  std::vector<double> radius;  // per point: distance to its 8th nearest neighbour
-
-  void Build() {
-    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-    for (const Vec& p : points) cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-    tree.setInputCloud(cloud);
-    std::vector<int> idx;
-    std::vector<float> d2;
-    for (const Vec& p : points) {
-      tree.nearestKSearch(pcl::PointXYZ(p.x(), p.y(), p.z()), 9, idx, d2);
-      radius.push_back(std::sqrt(d2.back()));
-    }
-  }
-  double Distance(const Vec& x, Vec* normal) const {
-    std::vector<int> idx;
-    std::vector<float> d2;
-    tree.nearestKSearch(pcl::PointXYZ(x.x(), x.y(), x.z()), 16, idx, d2);
-    double best = std::numeric_limits<double>::infinity();
-    for (int i : idx) {  // the nearest point alone misreads points near a crease
-      const double to_point = (x - points[i]).norm();
-      Vec g;
-      const double e = std::abs(surface[i](x, &g));
-      const double tangential = std::sqrt(std::max(0.0, to_point * to_point - e * e));
-      const double d = tangential <= 2 * radius[i] ? e : to_point;
-      if (d < best) {
-        best = d;
-        *normal = g.dot(normals[i]) < 0 ? Vec(-g) : g;
-      }
-    }
-    return best;
-  }
-};
-
-std::function<double(const Vec&, Vec*)> TangentPlane(const Vec& p, const Vec& n) {
-  return [p, n](const Vec& x, Vec* g) {
-    *g = n;
-    return n.dot(x - p);
-  };
-}
-
-// Fit4CAD equations (datasets/generators/ground_truth.h): plane [a b c d], quadric of 10 numbers.
-std::function<double(const Vec&, Vec*)> Fit4CadSurface(const std::vector<double>& q) {
-  if (q.size() == 4)
-    return [q](const Vec& x, Vec* g) {
-      const Vec n(q[0], q[1], q[2]);
-      *g = n.normalized();
-      return (n.dot(x) + q[3]) / n.norm();
-    };
-  return [q](const Vec& x, Vec* g) {
-    Eigen::Matrix3d a;
-    a << q[0], q[3], q[4], q[3], q[1], q[5], q[4], q[5], q[2];
-    const Vec b(q[6], q[7], q[8]);
-    const Vec grad = 2 * (a * x + b);
-    *g = grad.normalized();
-    return (x.dot(a * x) + 2 * b.dot(x) + q[9]) / grad.norm();
-  };
-}
-
-std::vector<Case> GeneratedCases(int points, double outliers, unsigned seed) {
-  std::vector<Case> cases;
-  for (const implicitfit::GeneratedSolid& solid : implicitfit::AllGeneratedSolids()) {
-    Case c;
-    c.name = solid.name;
-    c.size = (solid.box_max - solid.box_min).maxCoeff();
-    implicitfit::SampleOptions so;
-    so.count = points;
-    so.noise = 0.002 * c.size;
-    so.outlier_fraction = outliers;
-    so.seed = seed;
-    so.has_box = true;
-    so.box_min = solid.box_min;
-    so.box_max = solid.box_max;
-    const implicitfit::SampledCloud cloud = implicitfit::SampleModel(solid.truth, so);
-    c.points = cloud.cloud.points;
-    c.normals = cloud.cloud.normals;
-    implicitfit::SampleOptions clean = so;
-    clean.noise = 0;
-    clean.outlier_fraction = 0;
-    clean.seed = seed + 1000;
-    c.truth_points = implicitfit::SampleModel(solid.truth, clean).cloud.points;
-    const implicitfit::Model truth = solid.truth;
-    c.truth = [truth](const Vec& x, Vec* normal) {
-      double f;
-      const Vec g = truth.Gradient(x, &f);
-      *normal = g.normalized();
-      return std::abs(f) / g.norm();
-    };
-    const std::vector<int> labels =
-        implicitfit::GroundTruthLabels(solid, cloud.cloud, 4 * so.noise);
-    std::vector<implicitfit::NodeType> kinds;
-    for (const implicitfit::Model& p : solid.primitives) kinds.push_back(p.nodes()[0].type);
-    c.primitives = implicitfit::FitLabelledPrimitives(c.points, c.normals, labels, kinds, seed);
-    c.box_min = solid.box_min;
-    c.box_max = solid.box_max;
-    cases.push_back(std::move(c));
-  }
-  return cases;
-}
-
-void MeshBoxOfCloud(Case* c) {
-  Vec lo, hi;
-  BoundingBox(c->points, &lo, &hi);
-  c->size = (hi - lo).maxCoeff();
-  c->box_min = lo - 0.1 * (hi - lo);
-  c->box_max = hi + 0.1 * (hi - lo);
-}
-
-// A Fit4CAD part; false (and a message) when its files are absent or unusable.
-bool Fit4CadCase(const std::string& data, const std::string& part, unsigned seed, Case* c,
-                 std::string* why) {
-  const std::string cloud_path = data + "/fit4cad/fit4cad_" + part + ".xyzl";
-  const std::string implicit_path =
-      data + "/fit4cad/fit4cad_" + part + "/" + part + "_implicit.txt";
-  if (!std::ifstream(cloud_path) || !std::ifstream(implicit_path)) {
-    *why = "absent";
-    return false;
-  }
-  implicitfit::CloudFileInfo info;
-  implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(cloud_path, &info);
-  implicitfit::EnsureOrientedNormals(&cloud);
-  const std::vector<implicitfit::NodeType> kinds = implicitfit::ReadFit4CadKinds(implicit_path);
-  const std::vector<std::vector<double>> coefficients =
-      implicitfit::ReadFit4CadCoefficients(implicit_path);
-  // Tori: the exact distance to the torus of the parametric file (its implicit coefficients are
-  // in an undocumented order).
-  const std::string parametric_path =
-      data + "/fit4cad/fit4cad_" + part + "/" + part + "_parametric.txt";
-  std::vector<std::function<double(const Vec&, Vec*)>> torus_surface(kinds.size());
-  for (size_t k = 0; k < kinds.size(); ++k) {
-    if (kinds[k] != implicitfit::NodeType::kTorus) continue;
-    const implicitfit::Model torus = implicitfit::Fit4CadTorusFromParametric(
-        implicitfit::ReadFit4CadCoefficients(parametric_path).at(k));
-    torus_surface[k] = [torus](const Vec& x, Vec* g) {
-      double f;
-      *g = torus.Gradient(x, &f).normalized();
-      return f;
-    };
-  }
-  c->name = "Fit4CAD " + part;
-  c->points = cloud.points;
-  c->normals = cloud.normals;
-  std::vector<int> labels(cloud.size(), -1);
-  PointTruth* truth = new PointTruth;  // lives for the run (the lambda below keeps it)
-  for (size_t i = 0; i < cloud.size(); ++i) {
-    const int k = info.labels[i] - 1;
-    if (k < 0 || k >= static_cast<int>(kinds.size())) continue;
-    labels[i] = k;
-    truth->points.push_back(cloud.points[i]);
-    truth->normals.push_back(cloud.normals[i]);
-    truth->surface.push_back(coefficients[k].size() == 4 || coefficients[k].size() == 10
-                                 ? Fit4CadSurface(coefficients[k])
-                             : torus_surface[k] ? torus_surface[k]
-                                                : TangentPlane(cloud.points[i], cloud.normals[i]));
-  }
-  truth->Build();
-  c->truth = [truth](const Vec& x, Vec* n) { return truth->Distance(x, n); };
-  c->truth_points = truth->points;
-  try {
-    c->primitives = implicitfit::FitLabelledPrimitives(c->points, c->normals, labels, kinds, seed);
-  } catch (const std::exception& e) {
-    *why = e.what();
-    return false;
-  }
-  MeshBoxOfCloud(c);
-  return true;
-}
-
-bool CgalBoxCase(const std::string& data, Case* c, std::string* why) {
-  c->cloud_path = data + "/cgal/cgal_point_set_3_box_on_ground.xyz";
-  if (!std::ifstream(c->cloud_path)) {
-    *why = "absent";
-    return false;
-  }
-  const implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(c->cloud_path);
-  c->name = "CGAL box on ground";
-  c->points = cloud.points;
-  c->normals = cloud.normals;
-  PointTruth* truth = new PointTruth;
-  truth->points = cloud.points;
-  truth->normals = cloud.normals;
-  for (size_t i = 0; i < cloud.size(); ++i)
-    truth->surface.push_back(TangentPlane(cloud.points[i], cloud.normals[i]));
-  truth->Build();
-  c->truth = [truth](const Vec& x, Vec* n) { return truth->Distance(x, n); };
-  c->truth_points = truth->points;
-  MeshBoxOfCloud(c);
-  return true;
+  return bad;
 }
 
 int g_cells = 256;         // cells of implicitfit's mesh on the longest side (--cells)
 int g_fit_iterations = 0;  // --fit-iterations: the tree fitter's iterations per pass (0: default)
-bool g_poisson = true;     // --no-poisson: implicitfit's row only
+bool g_poisson = true;     // --no-poisson: implicitfit's rows only
 bool g_adaptive = true;    // --fixed-offset 1: the inside/outside samples at the fixed offset
 
-void RunCase(const Case& c, unsigned seed) {
-  // implicitfit: reconstruct (from the labelled scene, or detect), mesh at g_cells cells.
+// implicitfit on one cloud: from its labelled primitives (labelled) or end to end; one or two
+// rows (the second without the closure faces).
+void RunImplicitfit(const SolidCloud& c, bool labelled, unsigned seed, const Figures& best) {
+  const std::string start = labelled ? "labels, " + c.normals + " normals"
+                                     : "points only, " + c.normals + " normals";
   auto t0 = std::chrono::steady_clock::now();
   Figures f, measured;  // measured: without the faces on closure planes (not seen in the data)
   bool closed = false;
-  std::string method = "implicitfit reconstruct + mesh";
+  std::string method = "implicitfit";
   try {
     implicitfit::SolidReconstruction r;
-    size_t primitives = c.primitives.size();
-    if (c.primitives.empty()) {  // apps/reconstruct_job.h: detect, then reconstruct
+    size_t primitives = c.labelled.size();
+    if (!labelled) {  // apps/reconstruct_job.h: detect, then reconstruct
+      implicitfit::PointCloud cloud;
+      cloud.points = c.points;
+      cloud.normals = c.normals_of_points;
       const implicitfit::CloudReconstruction job =
-          implicitfit::ReconstructCloudFile(c.cloud_path, "", seed);
+          implicitfit::ReconstructCloud(cloud, c.name, c.normals, seed);
       r = job.result;
       primitives = job.primitives.size();
-      method = "implicitfit detect + reconstruct + mesh";
     } else {
       implicitfit::SolidReconstructionOptions ro;
       ro.seed = seed;
       if (g_fit_iterations > 0) ro.tree.max_iterations = g_fit_iterations;
       ro.adaptive_offset = g_adaptive;
-      r = implicitfit::ReconstructSolid(c.points, c.normals, c.primitives, ro);
+      r = implicitfit::ReconstructSolid(c.points, c.normals_of_points, c.labelled, ro);
     }
     if (r.success) {
       implicitfit::MeshOptions mo;
@@ -474,6 +308,8 @@ void RunCase(const Case& c, unsigned seed) {
       const double seconds = Seconds(t0);
       f = Judge(ours, c.truth, c.truth_points, seed);
       f.seconds = seconds;
+      const int far = NonPositiveFarAway(r.model, c.points);
+      f.bounded = far ? "no (" + std::to_string(far) + ")" : "yes";
       if (!r.closures.empty()) {
         // The measured part: triangles with a vertex off every closure plane.
         closed = true;
@@ -492,62 +328,58 @@ void RunCase(const Case& c, unsigned seed) {
         }
         measured = Judge(seen, c.truth, c.truth_points, seed);
         measured.seconds = seconds;
+        measured.bounded = f.bounded;
       }
     } else {
       method += " (" + r.message + ")";
       f.seconds = Seconds(t0);
     }
     std::fprintf(stderr,
-                 "%s: %s, %zu primitives, %zu blends, %.1f s (tree fit %.1f s, %d iterations)\n",
-                 c.name.c_str(), r.expression.c_str(), primitives, r.blends.size(), r.seconds,
-                 r.fit_seconds, r.fit_iterations);
+                 "%s [%s]: %s, %zu primitives, %zu blends, %.1f s (tree fit %.1f s, %d "
+                 "iterations)\n",
+                 c.name.c_str(), start.c_str(), r.expression.c_str(), primitives, r.blends.size(),
+                 r.seconds, r.fit_seconds, r.fit_iterations);
     std::string sides;  // per primitive: s(olid), h(ole), u(nused)
     for (const std::string& side : r.sides) sides += side.empty() ? '?' : side[0];
-    std::fprintf(stderr, "%s: sides %s, normal agreement %.4f of %d inliers (sigma %.3g), %s\n",
-                 c.name.c_str(), sides.c_str(), r.normal_agreement, r.inliers, r.sigma,
-                 r.message.c_str());
+    std::fprintf(stderr, "%s [%s]: sides %s, normal agreement %.4f of %d inliers (sigma %.3g), %s\n",
+                 c.name.c_str(), start.c_str(), sides.c_str(), r.normal_agreement, r.inliers,
+                 r.sigma, r.message.c_str());
     if (f.ok)  // where implicitfit's largest deviation is (stderr, for the analysis)
       std::fprintf(
-          stderr, "%s: Hausdorff distance at (%.6g, %.6g, %.6g), %s\n", c.name.c_str(), f.worst.x(),
-          f.worst.y(), f.worst.z(),
+          stderr, "%s [%s]: Hausdorff distance at (%.6g, %.6g, %.6g), %s\n", c.name.c_str(),
+          start.c_str(), f.worst.x(), f.worst.y(), f.worst.z(),
           f.worst_on_mesh ? "a mesh point far from the truth" : "a truth point far from the mesh");
   } catch (const std::exception& e) {
     method += std::string(" (") + e.what() + ")";
     f.seconds = Seconds(t0);
   }
+  Row(c.name, start, method, f, c.size, &best);
+  if (closed)
+    Row(c.name, start, method + ", closure faces left out (not measured)", measured, c.size,
+        &best);
+}
 
+// Every row of one cloud: Poisson (PCL depths 7, 8; CGAL) on its points and normals, then
+// implicitfit from the labels and/or end to end, compared with the best Poisson figures.
+void RunCloud(const SolidCloud& c, unsigned seed) {
   std::vector<std::pair<std::string, Figures>> poisson;
-  if (!g_poisson) {
-    Figures none;
-    Row(c.name, method, f, c.size, &none);
-    return;
-  }
-  pcl::PointCloud<pcl::PointNormal>::Ptr pc(new pcl::PointCloud<pcl::PointNormal>);
-  for (size_t i = 0; i < c.points.size(); ++i) {
-    pcl::PointNormal p;
-    p.x = c.points[i].x(), p.y = c.points[i].y(), p.z = c.points[i].z();
-    p.normal_x = c.normals[i].x(), p.normal_y = c.normals[i].y(), p.normal_z = c.normals[i].z();
-    pc->push_back(p);
-  }
-  for (int depth : {7, 8}) {
-    t0 = std::chrono::steady_clock::now();
-    pcl::Poisson<pcl::PointNormal> pcl_poisson;
-    pcl_poisson.setDepth(depth);
-    pcl_poisson.setInputCloud(pc);
-    pcl::PolygonMesh poly;
-    pcl_poisson.reconstruct(poly);
-    const double seconds = Seconds(t0);
-    Figures p = Judge(FromPcl(poly), c.truth, c.truth_points, seed);
-    p.seconds = seconds;
-    poisson.emplace_back("PCL Poisson depth " + std::to_string(depth), p);
-  }
+  if (g_poisson) {
+    for (int depth : {7, 8}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const TriangleMesh mesh = bench::PoissonMesh(c.points, c.normals_of_points, depth);
+      const double seconds = Seconds(t0);
+      Figures p = Judge(mesh, c.truth, c.truth_points, seed);
+      p.seconds = seconds;
+      poisson.emplace_back("PCL Poisson depth " + std::to_string(depth), p);
+    }
 #ifdef IMPLICITFIT_HAVE_CGAL_POISSON
-  const implicitfit_bench::CgalPoissonResult cgal =
-      implicitfit_bench::CgalPoisson(c.points, c.normals);
-  Figures p = cgal.success ? Judge(cgal.mesh, c.truth, c.truth_points, seed) : Figures{};
-  p.seconds = cgal.seconds;
-  poisson.emplace_back("CGAL Poisson", p);
+    const implicitfit_bench::CgalPoissonResult cgal =
+        implicitfit_bench::CgalPoisson(c.points, c.normals_of_points);
+    Figures p = cgal.success ? Judge(cgal.mesh, c.truth, c.truth_points, seed) : Figures{};
+    p.seconds = cgal.seconds;
+    poisson.emplace_back("CGAL Poisson", p);
 #endif
+  }
   Figures best;  // the best Poisson figure of each kind (the strictest comparison)
   best.chamfer = best.hausdorff = 1e300;
   for (const auto& [name, q] : poisson)
@@ -556,10 +388,10 @@ void RunCase(const Case& c, unsigned seed) {
       best.chamfer = std::min(best.chamfer, q.chamfer);
       best.hausdorff = std::min(best.hausdorff, q.hausdorff);
     }
-  Row(c.name, method, f, c.size, &best);
-  if (closed)
-    Row(c.name, method + ", closure faces left out (not measured)", measured, c.size, &best);
-  for (const auto& [name, q] : poisson) Row(c.name, name, q, c.size);
+  if (!c.labelled.empty()) RunImplicitfit(c, true, seed, best);
+  if (c.end_to_end) RunImplicitfit(c, false, seed, best);
+  const std::string start = c.normals + " normals";
+  for (const auto& [name, q] : poisson) Row(c.name, start, name, q, c.size);
 }
 
 }  // namespace
@@ -568,6 +400,7 @@ int main(int argc, char** argv) {
   int points = 20000;
   double outliers = 0.0;
   unsigned seed = 1;
+  bool labels = true;
   std::string only;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--points"))
@@ -586,34 +419,44 @@ int main(int argc, char** argv) {
       g_poisson = false;
     else if (!std::strcmp(argv[i], "--fixed-offset") && !std::strcmp(argv[i + 1], "1"))
       g_adaptive = false;
+    else if (!std::strcmp(argv[i], "--labels") && !std::strcmp(argv[i + 1], "0"))
+      labels = false;
   }
   std::printf(
-      "| cloud | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | watertight "
-      "(bad edges) | triangles | seconds | Chamfer / Hausdorff vs best Poisson |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+      "| cloud | start | method | Chamfer (/ size) | Hausdorff (/ size) | normal consistency | "
+      "components | watertight (bad edges) | bounded | triangles | seconds | Chamfer / "
+      "Hausdorff vs best Poisson |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   auto wanted = [&](const std::string& name) {
     return only.empty() || name.find(only) != std::string::npos;
   };
-  for (const Case& c : GeneratedCases(points, outliers, seed))
-    if (wanted(c.name)) RunCase(c, seed);
+  for (const SolidCloud& c : bench::GeneratedClouds(points, outliers, seed, labels))
+    if (wanted(c.name)) RunCloud(c, seed);
   const std::string data = IMPLICITFIT_SHARED_DATA;
   for (const std::string part : {"test_PC33", "test_PC34", "test_PC35", "test_PC21", "train_PC124",
                                  "train_PC131", "train_PC145", "train_PC155"}) {
     if (!wanted("Fit4CAD " + part)) continue;
-    Case c;
+    SolidCloud c;
     std::string why;
-    if (Fit4CadCase(data, part, seed, &c, &why))
-      RunCase(c, seed);
+    if (bench::Fit4CadCloud(data, part, seed, labels, &c, &why))
+      RunCloud(c, seed);
     else
-      std::printf("| Fit4CAD %s | skipped: %s | | | | | | | |\n", part.c_str(), why.c_str());
+      std::printf("| Fit4CAD %s | | skipped: %s | | | | | | | | | |\n", part.c_str(), why.c_str());
   }
-  if (wanted("CGAL box on ground")) {
-    Case c;
+  const std::string box = data + "/cgal/cgal_point_set_3_box_on_ground.xyz";
+  const std::string milk = std::string(IMPLICITFIT_SOURCE_DIR) +
+                           "/datasets/data/pcl_milk_carton_kinect.pcd";
+  for (const auto& [path, name, points_only] :
+       {std::tuple<std::string, std::string, bool>{box, "CGAL box on ground", false},
+        {box, "CGAL box on ground", true},
+        {milk, "Kinect milk carton", true}}) {
+    if (!wanted(name) || (!points_only && !labels)) continue;
+    SolidCloud c;
     std::string why;
-    if (CgalBoxCase(data, &c, &why))
-      RunCase(c, seed);
+    if (bench::ScanCloud(path, name, points_only, &c, &why))
+      RunCloud(c, seed);
     else
-      std::printf("| CGAL box on ground | skipped: %s | | | | | | | |\n", why.c_str());
+      std::printf("| %s | | skipped: %s | | | | | | | | | |\n", name.c_str(), why.c_str());
   }
   return 0;
 }

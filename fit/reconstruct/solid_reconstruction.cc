@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "fit/reconstruct/blend_refit.h"
 #include "fit/reconstruct/csg_separation.h"
 #include "fit/reconstruct/fillet_separators.h"
 #include "fit/reconstruct/offset_samples.h"
@@ -15,37 +16,12 @@
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/reconstruct/solid_bounding.h"
 #include "fit/tree/tree_covariance.h"
+#include "model/median.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
-
-// Copies the subtree of src at `index` into dst; returns the new node's index.
-int CopyNode(const Model& src, int index, Model* dst) {
-  const ModelNode& node = src.nodes()[index];
-  const double* p = src.parameters().data() + node.first_parameter;
-  int copied;
-  if (IsOperator(node.type)) {
-    std::vector<int> children;
-    for (int c : node.children) children.push_back(CopyNode(src, c, dst));
-    copied = dst->AddOperator(node.type, children, p[0], p[1], node.order, node.name);
-  } else if (node.type == NodeType::kBernsteinPatch) {
-    copied = dst->AddBernsteinPatch(node.degree, node.tetrahedron,
-                                    std::vector<double>(p, p + node.num_parameters), node.name);
-  } else {
-    copied =
-        dst->AddPrimitive(node.type, std::vector<double>(p, p + node.num_parameters), node.name);
-  }
-  dst->mutable_nodes()[copied].fixed = node.fixed;
-  return copied;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 // Value and central-difference gradient of one node of a model.
 double NodeValue(const Model& m, int node, const Vec& x, Vec* grad, double h) {
@@ -57,62 +33,6 @@ double NodeValue(const Model& m, int node, const Vec& x, Vec* grad, double h) {
     (*grad)[k] = (m.EvaluateNode(node, p, a.data()) - m.EvaluateNode(node, p, b.data())) / (2 * h);
   }
   return m.EvaluateNode(node, p, x.data());
-}
-
-// Fixes every field of the primitives that no smooth operator (order > 0) has above them; returns
-// true when some parameter is left free. In a sharp subtree every point's residual depends on
-// the one active primitive, which the primitive fitter has already fitted to its own points:
-// freeing it in the joint fit changes little and multiplies the autodiff passes over the whole
-// tree (Fit4CAD PC131: 18 primitives, no blend, about 2 s per iteration on 2 cores).
-bool FixPrimitivesOutsideBlends(Model* m) {
-  bool any_free = false;
-  std::vector<std::pair<int, bool>> stack = {{m->root(), false}};
-  while (!stack.empty()) {
-    const auto [index, under_blend] = stack.back();
-    stack.pop_back();
-    ModelNode& node = m->mutable_nodes()[index];
-    if (IsOperator(node.type)) {
-      const bool smooth = node.order > 0;
-      any_free = any_free || smooth;
-      for (int c : node.children) stack.push_back({c, under_blend || smooth});
-    } else if (!under_blend) {
-      node.fixed.clear();
-      for (const ParameterField& field : ParameterFieldsOf(node.type))
-        node.fixed.push_back(field.name);
-    } else {
-      any_free = any_free || node.fixed.empty();
-    }
-  }
-  return any_free;
-}
-
-// What the tree fitter reports, for a model with nothing left to fit: first-order distances
-// d_i = f / |grad f|, sigma = 1.4826 median |d_i|, RMS of the inliers |d_i| < max(3 sigma,
-// floor) (noise-free clouds: most points on planes have d_i = 0, and so has sigma).
-TreeFitResult UnfittedTreeFigures(const Model& m, const std::vector<Vec>& points,
-                                  const std::vector<Vec>& normals, double floor) {
-  TreeFitResult r;
-  r.model = m;
-  std::vector<double> d(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    double f;
-    const Vec g = m.Gradient(points[i], &f);
-    d[i] = std::abs(f) / std::sqrt(g.squaredNorm() + 1e-12);
-  }
-  r.sigma = 1.4826 * Median(d);
-  double ss = 0, angles = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (!(d[i] < std::max(3 * r.sigma, floor))) continue;
-    ++r.inliers;
-    ss += d[i] * d[i];
-    const Vec g = m.Gradient(points[i]).normalized();
-    angles += std::acos(std::min(1.0, std::abs(g.dot(normals[i])))) * 180.0 / M_PI;
-  }
-  r.rms = r.inliers ? std::sqrt(ss / r.inliers) : 0.0;
-  if (r.inliers) r.mean_normal_angle_deg = angles / r.inliers;
-  r.success = true;
-  r.message = "no blend: the primitives keep their fits";
-  return r;
 }
 
 }  // namespace
@@ -311,8 +231,8 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     for (const CsgTerm& term : sep.terms) {
       std::vector<int> pos, neg;
       for (int k = 0; k < static_cast<int>(lit.size()); ++k) {
-        if (term.inside >> k & 1) pos.push_back(CopyNode(lit[k], lit[k].root(), &tree));
-        if (term.outside >> k & 1) neg.push_back(CopyNode(lit[k], lit[k].root(), &tree));
+        if (term.inside >> k & 1) pos.push_back(CopySubtree(lit[k], lit[k].root(), &tree));
+        if (term.outside >> k & 1) neg.push_back(CopySubtree(lit[k], lit[k].root(), &tree));
       }
       if (pos.empty()) continue;  // unbounded (only complements): cannot be part of a solid
       int node = pos.size() == 1
@@ -526,18 +446,19 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
 
   // 5. Joint refinement on the points near the initial solid.
   std::vector<Vec> near_points, near_normals;
+  std::vector<bool> near_on_face;
   for (size_t i = 0; i < N; ++i) {
     const double f = m.Value(points[i]);
     if (std::abs(f) < R) {
       near_points.push_back(points[i]);
       near_normals.push_back(normals[i]);
+      near_on_face.push_back(label[i] >= 0);
     }
   }
-  // Primitives outside every blend keep the primitive fitter's parameters; with no blend at all
-  // nothing is refitted.
-  TreeFitResult fit = FixPrimitivesOutsideBlends(&m)
-                          ? FitModelTree(m, near_points, near_normals, options.tree)
-                          : UnfittedTreeFigures(m, near_points, near_normals, 1e-6 * diag);
+  // Each smooth operator's subtree on the points where the solid's value is its own
+  // (fit/reconstruct/blend_refit.h); with no blend nothing is refitted.
+  const TreeFitResult fit = RefitBlends(m, near_points, near_normals, near_on_face,
+                                        options.max_fit_points, 1e-6 * diag, options.tree, &rng);
   out.fit_seconds = fit.seconds;
   out.fit_iterations = fit.iterations;
   if (!fit.success) {

@@ -67,6 +67,9 @@ struct SolidReconstructionOptions {
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
   int blend_order = 3;
   int max_samples = 20000;  // inside/outside samples drawn from the assigned points
+  // The joint refinement (step 5) runs on at most this many points near the solid: every
+  // unassigned one and a random subset of the assigned ones.
+  int max_fit_points = 4000;
   // Separators (fit/reconstruct/solid_bounding.h): a cell is mixed when its minority has at least
   // max(min_conflict_samples, min_conflict_fraction of all samples) and 10% of its samples.
   int max_separators = 16;

@@ -67,8 +67,12 @@ void CheckPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
   const NormalResult normals = EnsureOrientedNormals(&cloud);
   const CloudReconstruction job = ReconstructCloud(cloud, solid.name, normals.action, seed);
   const SolidReconstruction& r = job.result;
-  std::printf("  %s: %zu primitives, expression %s\n  %s, %.1f s\n", solid.name.c_str(),
-              job.primitives.size(), r.expression.c_str(), r.message.c_str(), r.seconds);
+  std::printf("  %s: %zu primitives, expression %s\n  %s, %.1f s (tree fit %.1f s, %d blends)\n",
+              solid.name.c_str(), job.primitives.size(), r.expression.c_str(), r.message.c_str(),
+              r.seconds, r.fit_seconds, static_cast<int>(r.blends.size()));
+  for (const BlendEstimate& b : r.blends)  // DEBUG
+    std::printf("    blend %s %s delta %.4f eps %.4f, %d points, %d iterations\n", b.node.c_str(),
+                b.type.c_str(), b.delta, b.epsilon, b.transition_points, r.fit_iterations);
   if (std::getenv("DUMP_DIR"))  // DEBUG
     for (size_t k = 0; k < job.primitives.size(); ++k) {
       const Model& pm = job.primitives[k].model;
@@ -115,3 +119,9 @@ TEST(PointsOnlyReconstruction, DomeOnPlateWithHoles) { CheckPointsOnly(DomeOnPla
 
 }  // namespace
 }  // namespace implicitfit
+// DEBUG
+namespace implicitfit { namespace {
+TEST(PointsOnlyReconstructionOld, RoundedBox) { CheckPointsOnly(RoundedBoxSolid(), 8000, 1); }
+TEST(PointsOnlyReconstructionOld, Plate) { CheckPointsOnly(PlateWithFilletedBoreSolid(), 8000, 1); }
+TEST(PointsOnlyReconstructionOld, Boss) { CheckPointsOnly(BossOnSlabSolid(), 8000, 1); }
+} }
