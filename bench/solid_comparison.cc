@@ -31,7 +31,8 @@
 // End to end is apps/reconstruct_job.h's ReconstructCloud, what `reconstruct CLOUD` runs after
 // reading the cloud: detect, orientation, CSG, fit; then the mesh (256 cells on the longest side
 // of the meshing box, --cells: the finest grid of PCL's Poisson at depth 8; the generated
-// solids' box, or the cloud's box enlarged by 10%). When reconstruct closed an open scan, a
+// solids' box, or the cloud's box enlarged by 10%, and the closure box when the solid has one).
+// When reconstruct closed an open scan, a
 // second row judges the mesh without its faces on closure planes (fit/reconstruct/
 // solid_bounding.h: not measured). Figures: Chamfer distance (mean of the two directed mean
 // distances: mesh -> truth at 50 000 area-uniform mesh points, truth -> mesh by exact
@@ -39,7 +40,7 @@
 // consistency (mean of n_face . n_truth, signed: 1 is perfect, orientation included), connected
 // components of the mesh (triangles sharing vertices), watertightness (edges not in exactly two
 // triangles), bounded (implicitfit: f > 0 at every point of a 33 x 33 grid on the faces of boxes
-// 1.5, 10 and 1000 times the cloud's box, a far-field check of the model itself, which the mesh
+// 2, 10 and 1000 times the cloud's box, a far-field check of the model itself, which the mesh
 // box would hide), time (implicitfit: detect, reconstruction and meshing, not the normals, which
 // every method is given; Poisson: its reconstruction). The last column gives implicitfit / the
 // best Poisson figure on the same cloud and normals.
@@ -242,14 +243,15 @@ void Row(const std::string& cloud, const std::string& start, const std::string& 
   std::fflush(stdout);
 }
 
-// Grid points on the faces of boxes 1.5, 10 and 1000 times the cloud's box where f <= 0.
+// Grid points on the faces of boxes 2, 10 and 1000 times the cloud's box where f <= 0 (2: a
+// closure box in the part's frame may reach beyond 1.5 times the cloud's axis-aligned box).
 int NonPositiveFarAway(const implicitfit::Model& m, const std::vector<Vec>& points) {
   Vec lo = points[0], hi = points[0];
   for (const Vec& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec c = 0.5 * (lo + hi);
   const int n = 32;
   int bad = 0;
-  for (const double scale : {1.5, 10.0, 1000.0}) {
+  for (const double scale : {2.0, 10.0, 1000.0}) {
     const Vec h = 0.5 * scale * (hi - lo);
     for (int axis = 0; axis < 3; ++axis)
       for (const double side : {-1.0, 1.0})
@@ -303,7 +305,12 @@ void RunImplicitfit(const SolidCloud& c, bool labelled, unsigned seed, const Fig
       mo.has_box = true;
       mo.box_min = c.box_min;
       mo.box_max = c.box_max;
-      mo.cell = (c.box_max - c.box_min).maxCoeff() / g_cells;
+      if (r.closed) {  // the solid lies in the closure box, which may exceed the cloud's
+        const Vec margin = 0.02 * (r.closure_box_max - r.closure_box_min);
+        mo.box_min = mo.box_min.cwiseMin(r.closure_box_min - margin);
+        mo.box_max = mo.box_max.cwiseMax(r.closure_box_max + margin);
+      }
+      mo.cell = (mo.box_max - mo.box_min).maxCoeff() / g_cells;
       const TriangleMesh ours = implicitfit::MeshModel(r.model, mo).mesh;
       const double seconds = Seconds(t0);
       f = Judge(ours, c.truth, c.truth_points, seed);

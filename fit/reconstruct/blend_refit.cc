@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit/tree/tree_covariance.h"
 #include "model/median.h"
 
 namespace implicitfit {
@@ -30,26 +31,18 @@ int CopySubtree(const Model& src, int index, Model* dst, std::vector<int>* map) 
   return copied;
 }
 
-bool FixPrimitivesOutsideBlends(Model* m) {
-  bool any_free = false;
-  std::vector<std::pair<int, bool>> stack = {{m->root(), false}};
-  while (!stack.empty()) {
-    const auto [index, parent_smooth] = stack.back();
-    stack.pop_back();
-    ModelNode& node = m->mutable_nodes()[index];
+bool FixPrimitives(Model* m) {
+  bool any_smooth = false;
+  for (ModelNode& node : m->mutable_nodes()) {
     if (IsOperator(node.type)) {
-      const bool smooth = node.order > 0;
-      any_free = any_free || smooth;
-      for (int c : node.children) stack.push_back({c, smooth});
-    } else if (!parent_smooth) {
-      node.fixed.clear();
-      for (const ParameterField& field : ParameterFieldsOf(node.type))
-        node.fixed.push_back(field.name);
-    } else {
-      any_free = any_free || node.fixed.empty();
+      any_smooth = any_smooth || node.order > 0;
+      continue;
     }
+    node.fixed.clear();
+    for (const ParameterField& field : ParameterFieldsOf(node.type))
+      node.fixed.push_back(field.name);
   }
-  return any_free;
+  return any_smooth;
 }
 
 TreeFitResult TreeFigures(const Model& m, const std::vector<Vec>& points,
@@ -79,13 +72,10 @@ TreeFitResult TreeFigures(const Model& m, const std::vector<Vec>& points,
   return r;
 }
 
-TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
-                          const std::vector<Vec>& normals, const std::vector<bool>& assigned,
-                          int max_points, double floor, const TreeFitOptions& options,
-                          std::mt19937_64* rng) {
-  Model m = solid;
-  if (!FixPrimitivesOutsideBlends(&m)) return TreeFigures(m, points, normals, floor);
-  // Top-level smooth operators: the first smooth node on every path from the root.
+namespace {
+
+// The top-level smooth operators: the first smooth node on every path from the root.
+std::vector<int> TopSmoothOperators(const Model& m) {
   std::vector<int> tops, stack = {m.root()};
   while (!stack.empty()) {
     const int index = stack.back();
@@ -98,8 +88,48 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
     }
     for (int c : node.children) stack.push_back(c);
   }
+  return tops;
+}
+
+// Indices of the points where |f_solid| = |f_subtree| (relative 1e-9).
+std::vector<size_t> PointsOfSubtree(const Model& sub, const std::vector<Vec>& points,
+                                    const std::vector<double>& solid_value) {
+  std::vector<size_t> mine;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double a = std::abs(solid_value[i]), b = std::abs(sub.Value(points[i]));
+    if (std::abs(a - b) <= 1e-9 * (1.0 + a)) mine.push_back(i);
+  }
+  return mine;
+}
+
+// sum_i min(d_i^2, clip^2), d_i = f / |grad f| (MSAC's truncated quadratic).
+double TruncatedCost(const Model& m, const std::vector<Vec>& points, double clip) {
+  double cost = 0;
+  for (const Vec& x : points) {
+    double f;
+    const Vec g = m.Gradient(x, &f);
+    const double d = std::abs(f) / std::sqrt(g.squaredNorm() + 1e-300);
+    cost += std::min(d * d, clip * clip);
+  }
+  return cost;
+}
+
+}  // namespace
+
+TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
+                          const std::vector<Vec>& normals, const std::vector<bool>& assigned,
+                          int max_points, double floor, const TreeFitOptions& options,
+                          std::mt19937_64* rng) {
+  Model m = solid;
+  if (!FixPrimitives(&m)) return TreeFigures(m, points, normals, floor);
+  const std::vector<int> tops = TopSmoothOperators(m);
   std::vector<double> solid_value(points.size());
   for (size_t i = 0; i < points.size(); ++i) solid_value[i] = m.Value(points[i]);
+  // The truncation of the acceptance cost: 3 sigma of the sharp solid.
+  Model sharp = m;
+  for (ModelNode& node : sharp.mutable_nodes())
+    if (IsOperator(node.type)) node.order = 0;
+  const double clip = std::max(3.0 * TreeFigures(sharp, points, normals, floor).sigma, floor);
   double seconds = 0;
   int iterations = 0;
   for (int top : tops) {
@@ -108,14 +138,14 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
     sub.SetRoot(CopySubtree(m, top, &sub, &map));
     // Points where the solid's value is the subtree's: on-face points first, then the others.
     std::vector<size_t> on_face, off_face;
-    for (size_t i = 0; i < points.size(); ++i) {
-      const double a = std::abs(solid_value[i]), b = std::abs(sub.Value(points[i]));
-      if (!(std::abs(a - b) <= 1e-9 * (1.0 + a))) continue;
+    for (size_t i : PointsOfSubtree(sub, points, solid_value))
       (assigned[i] ? on_face : off_face).push_back(i);
-    }
     std::shuffle(on_face.begin(), on_face.end(), *rng);
-    const size_t room = static_cast<size_t>(
-        std::max<long>(0, max_points - static_cast<long>(off_face.size())));
+    // Face points only say where the blend ends: three per transition point, at least 1000,
+    // within max_points in all.
+    const size_t room = std::min<size_t>(
+        std::max<size_t>(1000, 3 * off_face.size()),
+        static_cast<size_t>(std::max<long>(0, max_points - static_cast<long>(off_face.size()))));
     if (on_face.size() > room) on_face.resize(room);
     std::vector<size_t> chosen = off_face;
     chosen.insert(chosen.end(), on_face.begin(), on_face.end());
@@ -133,13 +163,18 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
       failed.model = m;
       return failed;
     }
+    Model blended = m, unblended = m;
     for (size_t s = 0; s < map.size(); ++s) {
       if (map[s] < 0) continue;
       const ModelNode& from = fit.model.nodes()[map[s]];
       const ModelNode& to = m.nodes()[s];
       std::copy_n(fit.model.parameters().begin() + from.first_parameter, to.num_parameters,
-                  m.mutable_parameters().begin() + to.first_parameter);
+                  blended.mutable_parameters().begin() + to.first_parameter);
+      if (IsOperator(to.type)) unblended.mutable_nodes()[s].order = 0;
     }
+    // Kept only when it explains the points better than the sharp edges do.
+    m = TruncatedCost(blended, points, clip) < TruncatedCost(unblended, points, clip) ? blended
+                                                                                      : unblended;
   }
   TreeFitResult out = TreeFigures(m, points, normals, floor);
   out.seconds = seconds;
@@ -147,6 +182,30 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
   out.message = "converged";
   out.termination = FitTermination::kConverged;
   return out;
+}
+
+std::vector<double> BlendStandardDeviations(const Model& solid,
+                                            const std::vector<Vec>& points) {
+  std::vector<double> sd(solid.parameters().size(), 0.0);
+  std::vector<double> solid_value(points.size());
+  for (size_t i = 0; i < points.size(); ++i) solid_value[i] = solid.Value(points[i]);
+  for (int top : TopSmoothOperators(solid)) {
+    Model sub;
+    std::vector<int> map(solid.nodes().size(), -1);
+    sub.SetRoot(CopySubtree(solid, top, &sub, &map));
+    std::vector<Vec> mine;
+    for (size_t i : PointsOfSubtree(sub, points, solid_value)) mine.push_back(points[i]);
+    const std::vector<double> sub_sd =
+        TreeStandardDeviations(sub, mine, FreeParameterColumns(sub));
+    for (size_t s = 0; s < map.size(); ++s) {
+      if (map[s] < 0) continue;
+      const ModelNode& from = sub.nodes()[map[s]];
+      const ModelNode& to = solid.nodes()[s];
+      std::copy_n(sub_sd.begin() + from.first_parameter, to.num_parameters,
+                  sd.begin() + to.first_parameter);
+    }
+  }
+  return sd;
 }
 
 }  // namespace implicitfit

@@ -60,8 +60,11 @@ CsgSeparation SeparateCells(const std::vector<CsgSample>& samples, int num_primi
       wider.outside &= ~bit;
       bool hits_outside = false;
       for (std::uint64_t out : outside_cells) hits_outside = hits_outside || Covers(wider, out);
+      if (!hits_outside && options.bounded && (t.inside & bit) && !options.bounded(wider.inside))
+        hits_outside = true;  // would open the term
       if (!hits_outside) t = wider;
     }
+    if (options.bounded && !options.bounded(t.inside)) ++result.unbounded_terms;
     bool duplicate = false;
     for (const CsgTerm& u : terms)
       duplicate = duplicate || (u.inside == t.inside && u.outside == t.outside);

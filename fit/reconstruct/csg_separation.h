@@ -13,7 +13,9 @@
 //      ones only carve it, so a boss keeps the slab's bottom rather than 'not the slab's top');
 //   2. terms whose inside cells are all covered by the other terms are dropped.
 // (The order of step 1 can be given: fit/reconstruct/solid_bounding.h's closures and separators first.) A
-// cell holding a `certain` outside sample is outside whatever its votes.
+// cell holding a `certain` outside sample is outside whatever its votes. With a boundedness
+// test, step 1 keeps every term bounded (a positive literal stays when dropping it would open
+// the term: a term may extend through space no sample covers).
 // Outside samples on a shell around the object keep terms bounded (a term that would extend to
 // infinity meets them). Why this and not convex decomposition: the primitives of a CAD part are
 // not convex (bores, bosses), and separation works on any primitive kind and on concave
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,12 +47,17 @@ struct CsgSeparationOptions {
   // The order in which literals are tried for dropping (empty: 0, 1, ...); literals tried
   // first are dropped whenever possible (closures and separators before detected surfaces).
   std::vector<int> drop_order;
+  // When set: whether the intersection of the literals in a mask is bounded
+  // (fit/reconstruct/term_bounds.h). A positive literal is then dropped only when the term stays
+  // bounded; terms that are unbounded from the start (a cell no literal closes) are counted.
+  std::function<bool(std::uint64_t)> bounded;
 };
 
 struct CsgSeparation {
   std::vector<CsgTerm> terms;
   int inside_cells = 0, outside_cells = 0, unknown_cells = 0;
   int conflicting_samples = 0;  // samples whose cell's majority disagrees with them
+  int unbounded_terms = 0;      // terms that options.bounded calls unbounded (none without it)
 };
 
 // num_primitives <= 64.

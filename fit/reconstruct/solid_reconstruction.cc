@@ -3,10 +3,13 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <random>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "fit/reconstruct/blend_refit.h"
 #include "fit/reconstruct/csg_separation.h"
@@ -15,6 +18,7 @@
 #include "fit/reconstruct/point_assignment.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/reconstruct/solid_bounding.h"
+#include "fit/reconstruct/term_bounds.h"
 #include "fit/tree/tree_covariance.h"
 #include "model/median.h"
 
@@ -212,6 +216,10 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     }
   }
   bool closed = false;  // closures added: cells outside the closure box are outside
+  std::vector<Vec> box_corners;        // of the closure box (bit a of the index: face 2a + bit)
+  std::vector<int> closure_literals;   // the literals of its faces -a0, +a0, -a1, ...
+  std::uint64_t root_closures = 0;     // faces that bound the whole solid (below)
+  std::unordered_map<std::uint64_t, bool> bounded_cache;
   auto separate = [&]() {
     std::vector<CsgSample> samples(signs.size());
     for (size_t s = 0; s < signs.size(); ++s)
@@ -221,6 +229,13 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     for (int kind : {2, 3, 1, 0})
       for (int k = 0; k < static_cast<int>(lit.size()); ++k)
         if (literal_kind[k] == kind) so.drop_order.push_back(k);
+    // Every term stays bounded (fit/reconstruct/term_bounds.h); the literals only grow, so the
+    // answers for a mask stay valid.
+    so.bounded = [&](std::uint64_t mask) {
+      const auto found = bounded_cache.find(mask);
+      if (found != bounded_cache.end()) return found->second;
+      return bounded_cache[mask] = TermIsBounded(lit, mask);
+    };
     return SeparateCells(samples, static_cast<int>(lit.size()), so);
   };
   // The sharp tree: union of difference(intersection(positives), negatives).
@@ -302,7 +317,9 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
       add_plane_literal(split.plane, 1);
     }
     m = build_tree(sep);
-    if (closed || bounded_on_shell(m)) break;
+    // Closures when a term is open (no literal bounds it in some direction) or the shell
+    // meets the solid.
+    if (closed || (sep.unbounded_terms == 0 && bounded_on_shell(m))) break;
     if (lit.size() + 6 > 64) break;
     // Closures: the box around the assigned points in the part's frame; a new shell around it.
     closed = true;
@@ -310,6 +327,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
         ClosureBox(ClosureFrame(prim, out.assigned, assigned_positions), assigned_positions,
                    options.closure_margin * diag);
     Vec box_lo = Vec::Constant(1e300), box_hi = Vec::Constant(-1e300);
+    box_corners.resize(8);
     for (int corner = 0; corner < 8; ++corner) {
       // the box's corners: intersections of one face of each pair
       Eigen::Matrix3d a;
@@ -320,9 +338,13 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
         b[axis] = f.offset;
       }
       const Vec x = a.inverse() * b;
+      box_corners[corner] = x;
       box_lo = box_lo.cwiseMin(x);
       box_hi = box_hi.cwiseMax(x);
     }
+    out.closed = true;
+    out.closure_box_min = box_lo;
+    out.closure_box_max = box_hi;
     shell = make_shell(box_lo - 0.1 * (box_hi - box_lo), box_hi + 0.1 * (box_hi - box_lo));
     signs.resize(offset_samples + shell.size());
     for (size_t s = offset_samples; s < signs.size(); ++s) {
@@ -331,7 +353,10 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
         if ((k >= K || literal_on[k]) && lit[k].Value(shell[s - offset_samples]) < 0)
           signs[s] |= 1ULL << k;
     }
-    for (const PlaneLiteral& f : faces) add_plane_literal(f, 2);
+    for (const PlaneLiteral& f : faces) {
+      closure_literals.push_back(static_cast<int>(lit.size()));
+      add_plane_literal(f, 2);
+    }
   }
   // A term that carves a concave fillet's tube out (negated hole torus) keeps the fillet's outer
   // cylinder when (all but 1% of) its inside samples are in it: the shell's samples may all lie
@@ -353,8 +378,57 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     }
   if (tightened) m = build_tree(sep);
   out.expression = CsgExpressionText(sep.terms, names);
+  // A closed solid lies in its closure box (the cells beyond it are outside), but a term that no
+  // sample bounds may still reach out of it between the shell's samples (the Kinect milk carton:
+  // two cylinders of radius 0.29 and 0.1 intersect far beyond the scan). Every face of the box
+  // that the union crosses (a point of a 64 x 64 grid on the face inside the solid) bounds the
+  // whole solid: intersection(union of the terms, those faces).
+  if (closed && !m.nodes().empty()) {
+    std::vector<int> bounding = {m.root()};
+    std::string faces_text;
+    for (int f = 0; f < 6; ++f) {
+      const int axis = f / 2, side = f % 2;
+      std::vector<Vec> c;  // the face's corners, (u, v) = (0, 0), (1, 0), (0, 1)
+      for (int corner = 0; corner < 8; ++corner)
+        if ((corner >> axis & 1) == side) c.push_back(box_corners[corner]);
+      bool crosses = false;
+      const int n = 64;
+      for (int u = 0; u <= n && !crosses; ++u)
+        for (int v = 0; v <= n && !crosses; ++v) {
+          const Vec x = c[0] + (c[1] - c[0]) * u / n + (c[2] - c[0]) * v / n;
+          crosses = m.Value(x) < -1e-9 * diag;
+        }
+      if (!crosses) continue;
+      const int k = closure_literals[f];
+      root_closures |= 1ULL << k;
+      bounding.push_back(CopySubtree(lit[k], lit[k].root(), &m));
+      faces_text += " & " + names[k];
+    }
+    if (bounding.size() > 1) {
+      m.SetRoot(m.AddOperator(NodeType::kIntersection, bounding, placeholder, placeholder, 0));
+      out.expression = "(" + out.expression + ")" + faces_text;
+    }
+  }
+  if (std::getenv("IMPLICITFIT_DEBUG_CSG")) {  // DEBUG
+    for (const CsgTerm& term : sep.terms) {
+      int covered = 0, unique = 0;
+      for (size_t s = 0; s < offset_samples; ++s) {
+        if (!sin[s]) continue;
+        auto covers = [&](const CsgTerm& u) {
+          return (signs[s] & u.inside) == u.inside && !(signs[s] & u.outside);
+        };
+        if (!covers(term)) continue;
+        ++covered;
+        int others = 0;
+        for (const CsgTerm& u : sep.terms) others += covers(u);
+        unique += others == 1;
+      }
+      std::fprintf(stderr, "term %s: %d inside samples, %d only here\n",
+                   CsgExpressionText({term}, names).c_str(), covered, unique);
+    }
+  }
   for (int k = K; k < static_cast<int>(lit.size()); ++k) {
-    bool used = false;
+    bool used = (root_closures >> k & 1) != 0;
     for (const CsgTerm& term : sep.terms) used = used || ((term.inside | term.outside) >> k & 1);
     if (!used) continue;
     if (literal_kind[k] == 3) {
@@ -482,11 +556,11 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   out.bounded = true;
   for (const Vec& x : shell) out.bounded = out.bounded && out.model.Value(x) > 0;
 
-  // Deviations of the refitted parameters only (blends and the primitives below them).
-  const std::vector<double> sd =
-      TreeStandardDeviations(out.model, inlier_points, FreeParameterColumns(out.model));
+  // Deviations of the refitted parameters only (blends and their faces).
+  const std::vector<double> sd = BlendStandardDeviations(out.model, inlier_points);
   for (int o : smooth) {
     const ModelNode& node = out.model.nodes()[o];
+    if (node.order == 0) continue;  // the refit kept it sharp (fit/reconstruct/blend_refit.h)
     BlendEstimate b;
     b.node = out.model.NodeLabel(o);
     b.type = NodeTypeName(node.type);

@@ -61,7 +61,7 @@ struct SolidReconstructionOptions {
   // extra surfaces: fit/reconstruct/point_assignment.h): share of their points within
   // max(2.5 rms, redundant_floor of the diagonal) of the larger primitives.
   bool drop_redundant = true;
-  double redundant_share = 0.9;
+  double redundant_share = 0.8;
   double redundant_floor = 1e-4;
   int min_transition_points = 20;          // a blend needs at least this many transition points
   double min_transition_fraction = 0.003;  // ... and this fraction of the cloud
@@ -122,6 +122,10 @@ struct SolidReconstruction {
   // closures close the solid where the scan has no data (their faces are not measured).
   std::vector<AddedPlane> separators, closures;
   std::vector<AddedCylinder> separator_cylinders;
+  // When closures were added: the axis-aligned box of the closure box's corners (the solid lies
+  // in the closure box; a mesh of it needs this box, which may exceed the cloud's).
+  bool closed = false;
+  Eigen::Vector3d closure_box_min = Eigen::Vector3d::Zero(), closure_box_max = Eigen::Vector3d::Zero();
   double seconds = 0.0;
   double fit_seconds = 0.0;  // of which the joint refinement (step 5)
   int fit_iterations = 0;
