@@ -30,6 +30,7 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   j["normal_sign_agreement"] = r.normal_agreement;
   j["unassigned"] = r.unassigned;
   j["seconds"] = r.seconds;
+  if (r.verification.points > 0) j["verification"] = r.verification.ToJson();
   j["primitives"] = nlohmann::json::array();
   for (size_t k = 0; k < primitives.size() && k < r.sides.size(); ++k)
     j["primitives"].push_back(
@@ -72,14 +73,21 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
 }  // namespace
 
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
-                                         const std::string& scene_path, unsigned seed) {
+                                         const std::string& scene_path, unsigned seed,
+                                         const ProgressCallback& progress) {
   CloudReconstruction out;
-  out.cloud = ReadOrientedCloud(cloud_path, &out.normals);
+  {
+    ProgressStage stage(progress, "normals", cloud_path);
+    out.cloud = ReadOrientedCloud(cloud_path, &out.normals);
+    stage.End(std::to_string(out.cloud.size()) + " points, " + out.normals);
+  }
   if (scene_path.empty()) {
     // detect on the same file with its defaults; the cloud it read carries the normals it used.
     DetectionOptions options;
     options.seed = seed;
+    ProgressStage stage(progress, "detect", std::to_string(out.cloud.size()) + " points");
     CloudDetection detection = DetectCloudFile(cloud_path, options);
+    stage.End(std::to_string(detection.scene.primitives.size()) + " primitives");
     out.cloud = std::move(detection.cloud);
     out.primitives = PrimitivesOfScene(detection.scene);
     out.detected = true;
@@ -99,6 +107,7 @@ CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
   } else {
     SolidReconstructionOptions options;
     options.seed = seed;
+    options.progress = progress;
     out.result = ReconstructSolid(out.cloud.points, out.cloud.normals, out.primitives, options);
   }
   out.report = Report(out.result, out.cloud, out.normals, out.primitives);

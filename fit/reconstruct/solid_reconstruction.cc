@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 #include <stdexcept>
 
@@ -145,6 +146,12 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   const double R = options.max_fillet * diag;
 
   // 1. Assignment.
+  std::unique_ptr<ProgressStage> stage;  // one stage at a time: the last ends before the next
+  auto next_stage = [&](const char* name, const std::string& detail) {
+    stage.reset();
+    stage = std::make_unique<ProgressStage>(options.progress, name, detail);
+  };
+  next_stage("orientation", std::to_string(N) + " points, " + std::to_string(K) + " primitives");
   std::vector<Model> prim(K);
   std::vector<double> tau(K);
   for (int k = 0; k < K; ++k) {
@@ -190,6 +197,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
 
   // 3. Inside/outside samples and the separation, with separators and closures when needed
   //    (fit/reconstruct/solid_bounding.h).
+  next_stage("separation", "");
   std::mt19937_64 rng(options.seed);
   std::vector<size_t> assigned_points;
   for (size_t i = 0; i < N; ++i)
@@ -202,8 +210,10 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   // Literals: the primitives, then separators and closures (fixed planes).
   std::vector<Model> lit = prim;
   std::vector<std::string> names;
-  for (int k = 0; k < K; ++k)
+  for (int k = 0; k < K; ++k) {
     names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
+    lit[k].mutable_nodes()[lit[k].root()].name = names[k];  // the expression's name in the model
+  }
   std::vector<int> literal_kind(K, 0);  // 0 primitive, 1 separator, 2 closure
   std::vector<PlaneLiteral> literal_plane(K);
   // Samples: positions, inside flags, sign vectors over the literals.
@@ -447,6 +457,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   for (ModelNode& node : m.mutable_nodes())
     if (IsOperator(node.type)) node.fixed = {"delta", "epsilon"};
   // 4. Blends from the transition points.
+  next_stage("blends", out.expression);
   const double h = 1e-6 * diag;
   const double tau_all = *std::max_element(tau.begin(), tau.end());
   std::vector<int> operators;
@@ -519,6 +530,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   }
 
   // 5. Joint refinement on the points near the initial solid.
+  next_stage("tree fit", std::to_string(smooth.size()) + " blends");
   std::vector<Vec> near_points, near_normals;
   for (size_t i = 0; i < N; ++i) {
     const double f = m.Value(points[i]);
@@ -552,10 +564,11 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   }
   out.inliers = static_cast<int>(inlier_points.size());
   out.normal_agreement = out.inliers ? static_cast<double>(agree) / out.inliers : 0.0;
-  out.bounded = true;
-  for (const Vec& x : shell) out.bounded = out.bounded && out.model.Value(x) > 0;
 
-  const std::vector<double> sd = TreeStandardDeviations(out.model, inlier_points);
+  // Deviations only for the blends' report (their cost grows with every parameter of the tree).
+  const std::vector<double> sd = smooth.empty()
+                                     ? std::vector<double>(out.model.parameters().size(), 0.0)
+                                     : TreeStandardDeviations(out.model, inlier_points);
   for (int o : smooth) {
     const ModelNode& node = out.model.nodes()[o];
     BlendEstimate b;
@@ -572,10 +585,15 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     b.sd_fillet_radius = ImpliedFilletRadius(b.sd_delta, phi);
     out.blends.push_back(b);
   }
-  out.success = out.bounded && out.normal_agreement >= 0.5;
-  out.message = !out.bounded ? "the solid is not bounded (f <= 0 on the box around the cloud)"
-                : out.normal_agreement < 0.5 ? "grad f opposes the normals on most points"
-                                             : "ok";
+  // 6. Verification: bounded (proven), inside/outside, supported pieces.
+  stage.reset();
+  SolidVerificationOptions vo = options.verification;
+  if (!vo.progress) vo.progress = options.progress;
+  out.verification = VerifySolid(out.model, points, normals, vo);
+  ClaimVerification(out.verification, &out.model);
+  out.bounded = out.verification.bounded;
+  out.success = out.verification.verified;
+  out.message = out.success ? "ok" : out.verification.message;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

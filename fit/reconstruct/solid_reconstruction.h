@@ -28,6 +28,12 @@
 //      operators only keeps the primitive fitter's parameters (a point's residual there depends
 //      on that primitive alone, which was fitted to its own points), and a tree without a blend
 //      is not refitted (the fit over a whole tree of 18 primitives took hours on Fit4CAD PC131).
+//   6. verification (fit/reconstruct/solid_verification.h): bounded (proven), inside/outside
+//      agrees with the oriented cloud, every piece and cavity supported by scan points; success
+//      only when it passes. The model's leaves carry the primitives' names (so the expression
+//      maps to the model) and its claims (ModelClaims) the proven bounds and the verdict.
+// Progress (options.progress, fit/common/progress.h): stages "orientation" (steps 1-2),
+// "separation" (3), "blends" (4), "tree fit" (5), "verification" (6).
 // The implied fillet radius of a blend: on the bisector of two faces whose outward normals make
 // the angle phi, the blended zero set sits at distance delta / 4 from both faces (a = b:
 // 2a + delta / 2 = 0); a circular fillet of radius rho tangent to both has its arc there when
@@ -38,6 +44,8 @@
 #include <string>
 #include <vector>
 
+#include "fit/common/progress.h"
+#include "fit/reconstruct/solid_verification.h"
 #include "fit/tree/tree_fitter.h"
 #include "model/model.h"
 
@@ -69,6 +77,8 @@ struct SolidReconstructionOptions {
   double closure_margin = 0.02;  // closure box: the assigned points' box + this of the diagonal
   unsigned seed = 1;
   TreeFitOptions tree;
+  SolidVerificationOptions verification;  // step 6
+  ProgressCallback progress;              // stages, fit/common/progress.h (empty: silent)
 };
 
 struct BlendEstimate {
@@ -103,7 +113,7 @@ struct SolidReconstruction {
   std::vector<std::string> sides;  // per primitive: "solid", "hole" or "unused"
   std::vector<int> assigned;       // points per primitive
   int unassigned = 0;
-  bool bounded = false;  // f > 0 on the shell around the cloud
+  bool bounded = false;  // proven by the verification (f > 0 outside verification's bounds)
   double rms = 0.0;      // RMS first-order distance of the fit's inliers
   double sigma = 0.0;
   int inliers = 0;
@@ -113,6 +123,7 @@ struct SolidReconstruction {
   // closures close the solid where the scan has no data (their faces are not measured).
   std::vector<AddedPlane> separators, closures;
   std::vector<AddedCylinder> separator_cylinders;
+  SolidVerification verification;  // step 6; success = verification.verified
   double seconds = 0.0;
   double fit_seconds = 0.0;  // of which the joint refinement (step 5)
   int fit_iterations = 0;
