@@ -40,7 +40,21 @@ void CheckBounded(const Model& model, const Vec& cloud_lo, const Vec& cloud_hi, 
   v->enclosure_overflow = enclosure.overflow;
   Vec lo = Vec::Constant(1e300), hi = Vec::Constant(-1e300);
   bool all_bounded = true;
-  for (const EnclosurePiece& piece : enclosure.pieces) {
+  // Each piece is decided by linear programming; one that leaves the limit is split on its
+  // deferred outside literals (SplitOnOutside) while the budget of decided pieces lasts.
+  std::vector<EnclosurePiece> work(enclosure.pieces.rbegin(), enclosure.pieces.rend());
+  int budget = options.max_decided_pieces;
+  while (!work.empty()) {
+    const EnclosurePiece piece = std::move(work.back());
+    work.pop_back();
+    if (budget-- <= 0) {
+      all_bounded = false;
+      v->unbounded_piece = piece.label;
+      v->unbounded_reason = "more than " + std::to_string(options.max_decided_pieces) +
+                            " polyhedra to decide";
+      break;
+    }
+    ++v->decided_pieces;
     const PolytopeBox box = BoundPolytope(piece.faces, limit_lo, limit_hi);
     if (box.extent == PolytopeExtent::kEmpty) {
       ++v->empty_pieces;
@@ -50,6 +64,12 @@ void CheckBounded(const Model& model, const Vec& cloud_lo, const Vec& cloud_hi, 
       ++v->bounded_pieces;
       lo = lo.cwiseMin(box.lo);
       hi = hi.cwiseMax(box.hi);
+      continue;
+    }
+    if (box.extent == PolytopeExtent::kBeyondLimit && !piece.outside.empty()) {
+      ++v->split_pieces;
+      const std::vector<EnclosurePiece> parts = SplitOnOutside(model, piece);
+      work.insert(work.end(), parts.rbegin(), parts.rend());
       continue;
     }
     if (all_bounded) {  // the first polyhedron that leaves the limit is the one reported
@@ -68,6 +88,7 @@ void CheckBounded(const Model& model, const Vec& cloud_lo, const Vec& cloud_hi, 
         }
     }
     all_bounded = false;
+    break;  // one failure decides the check
   }
   if (!all_bounded) {
     std::string reason =
@@ -310,6 +331,8 @@ nlohmann::json SolidVerification::ToJson() const {
              "half-spaces of each primitive, blend reach delta/4), each decided by exact linear "
              "programming (GLPK)"},
             {"polyhedra", enclosure_pieces},
+            {"decided_polyhedra", decided_pieces},
+            {"split_polyhedra", split_pieces},
             {"bounded_polyhedra", bounded_pieces},
             {"empty_polyhedra", empty_pieces},
             {"gave_up", enclosure_overflow}};

@@ -6,9 +6,12 @@
 //      tree's structure (fit/reconstruct/sublevel_enclosure.h), and every polyhedron is shown
 //      empty or bounded within the cloud's box grown by max_reach diagonals by exact linear
 //      programming (fit/reconstruct/polytope_box.h); the union of their boxes is the solid's
-//      bounds (f > 0 outside it). A polyhedron that leaves that box fails the check; its deepest
-//      point beyond the limit is reported with f there (f <= 0: the solid truly reaches out
-//      that way, e.g. an infinite cylinder; f > 0: the enclosure is too coarse, not proven). As a consistency test of the proof, f is also sampled on the faces of the
+//      bounds (f > 0 outside it). A polyhedron that leaves that box is split on its deferred
+//      outside-of-a-convex-primitive literals (SplitOnOutside) and its parts are decided in
+//      turn (at most max_decided_pieces). One that still leaves the box fails the check; its
+//      deepest point beyond the limit is reported with f there (f <= 0: the solid truly
+//      reaches out that way, e.g. an infinite cylinder; f > 0: the enclosure is too coarse,
+//      not proven). As a consistency test of the proof, f is also sampled on the faces of the
 //      bounds grown by 1% (33 x 33 per face): a value <= 0 there fails the check.
 //   2. inside/outside agrees with the data: for each scan point p with oriented normal n and
 //      first-order distance d = f / |grad f|, the samples p - t n must have f < 0 and p + t n
@@ -42,6 +45,8 @@ namespace implicitfit {
 struct SolidVerificationOptions {
   // 1. bounded
   int max_enclosure_pieces = 512;
+  // Polyhedra decided by linear programming at most, splits on outside literals included.
+  int max_decided_pieces = 4096;
   // Every polyhedron must lie within the cloud's box grown by this (of its diagonal): rounded
   // half-spaces can close an open tube ~1e17 away (fit/reconstruct/polytope_box.h), and a solid
   // reaching that far from its scan is not supported by it.
@@ -75,6 +80,7 @@ struct SolidVerification {
   // 1. bounded
   bool bounded = false;
   int enclosure_pieces = 0, bounded_pieces = 0, empty_pieces = 0;
+  int decided_pieces = 0, split_pieces = 0;  // LP-decided; split on an outside literal
   bool enclosure_overflow = false;
   Eigen::Vector3d bounds_min = Eigen::Vector3d::Zero(), bounds_max = Eigen::Vector3d::Zero();
   double max_reach = 0.0;            // the option, for the report

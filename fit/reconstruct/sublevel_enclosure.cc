@@ -74,7 +74,14 @@ Pieces PrimitivePieces(const Context& ctx, int index, int sign, double t) {
     piece.faces.push_back({sign * a, sign * a.dot(vertex) + t});
     return {piece};
   }
-  if (sign < 0) return AllOfSpace(label, "the outside of a " + std::string(NodeTypeName(node.type)));
+  if (sign < 0) {
+    Pieces all = AllOfSpace(label, "the outside of a " + std::string(NodeTypeName(node.type)));
+    const bool convex = node.type == NodeType::kSphere || node.type == NodeType::kCylinder ||
+                        node.type == NodeType::kCone || node.type == NodeType::kBox ||
+                        node.type == NodeType::kEllipsoid;
+    if (convex) all[0].outside.push_back({index, t});
+    return all;
+  }
   switch (node.type) {
     case NodeType::kSphere: {
       const double r = p[3] + t;
@@ -151,6 +158,7 @@ Pieces Intersect(Context* ctx, const Pieces& a, const Pieces& b) {
       z.label = x.label + " & " + y.label;
       if (!y.unbounded_reason.empty())
         z.unbounded_reason += (z.unbounded_reason.empty() ? "" : "; ") + y.unbounded_reason;
+      z.outside.insert(z.outside.end(), y.outside.begin(), y.outside.end());
       out.push_back(std::move(z));
     }
   return out;
@@ -201,7 +209,89 @@ Pieces Enclose(Context* ctx, int index, int sign, double t) {
   return acc;
 }
 
+// The faces (outward normals w, offsets c: w . x <= c) of a convex polyhedron inscribed in
+// {f_node < -t}; false when that set is empty.
+bool InscribedFaces(const Model& m, int index, double t, std::vector<HalfSpace>* faces) {
+  const ModelNode& node = m.nodes()[index];
+  const double* p = m.parameters().data() + node.first_parameter;
+  const double shrink = 1.0 - 1e-9;  // strictly inside, against rounding
+  faces->clear();
+  auto add = [&](const Vec& w, const Vec& c, double r) { faces->push_back({w, w.dot(c) + r}); };
+  switch (node.type) {
+    case NodeType::kSphere: {
+      const double r = (p[3] - t) * shrink;
+      if (!(r > 0)) return false;
+      for (int a = 0; a < 3; ++a)
+        for (int s : {-1, 1}) add(s * Vec::Unit(a), Vec(p[0], p[1], p[2]), r / std::sqrt(3.0));
+      return true;
+    }
+    case NodeType::kCylinder: {
+      const double r = (p[6] - t) * shrink;
+      if (!(r > 0)) return false;
+      for (const Vec& w : RadialDirections(Vec(p[3], p[4], p[5]).normalized()))
+        add(w, Vec(p[0], p[1], p[2]), r * std::cos(M_PI / 8));  // vertices on the circle
+      return true;
+    }
+    case NodeType::kCone: {
+      const Vec u = Vec(p[3], p[4], p[5]).normalized();
+      const double a = p[6];
+      const Vec apex = Vec(p[0], p[1], p[2]) + (std::max(t, 0.0) / std::sin(a)) * u;
+      const std::vector<Vec> w = RadialDirections(u);
+      for (int k = 0; k < 8; ++k) {
+        const Vec g0 = std::cos(a) * u + std::sin(a) * w[k];
+        const Vec g1 = std::cos(a) * u + std::sin(a) * w[(k + 1) % 8];
+        Vec n = g0.cross(g1).normalized();
+        if (n.dot(w[k] + w[(k + 1) % 8]) < 0) n = -n;  // outward
+        add(n, apex, -1e-9 * (1.0 + apex.norm()));
+      }
+      return true;
+    }
+    case NodeType::kBox: {
+      double e[3][3];
+      BoxEvaluator::Axes(p + 3, e);
+      const double inset = std::max(t, 0.0);  // t < 0: the box itself (its offset is rounded)
+      for (int i = 0; i < 3; ++i)
+        if (!(p[7 + i] - inset > 0)) return false;
+      for (int i = 0; i < 3; ++i) {
+        const Vec axis(e[i][0], e[i][1], e[i][2]);
+        for (int s : {-1, 1}) add(s * axis, Vec(p[0], p[1], p[2]), (p[7 + i] - inset) * shrink);
+      }
+      return true;
+    }
+    case NodeType::kEllipsoid: {
+      const double r_min = std::min({p[3], p[4], p[5]});
+      const double scale = (1.0 - std::max(t, 0.0) / r_min) * shrink;
+      if (!(scale > 0)) return false;
+      const Vec e1 = Vec(p[6], p[7], p[8]).normalized();
+      Vec e2(p[9], p[10], p[11]);
+      e2 = (e2 - e2.dot(e1) * e1).normalized();
+      const Vec axes[3] = {e1, e2, e1.cross(e2)};
+      for (int i = 0; i < 3; ++i)
+        for (int s : {-1, 1})
+          add(s * axes[i], Vec(p[0], p[1], p[2]), p[3 + i] * scale / std::sqrt(3.0));
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
 }  // namespace
+
+std::vector<EnclosurePiece> SplitOnOutside(const Model& model, const EnclosurePiece& piece) {
+  EnclosurePiece rest = piece;
+  const EnclosurePiece::Outside literal = rest.outside.front();
+  rest.outside.erase(rest.outside.begin());
+  std::vector<HalfSpace> inscribed;
+  if (!InscribedFaces(model, literal.node, literal.level, &inscribed)) return {rest};
+  std::vector<EnclosurePiece> out;
+  for (const HalfSpace& h : inscribed) {
+    EnclosurePiece q = rest;
+    q.faces.push_back({-h.normal, -h.offset});  // beyond that face: n . x >= d
+    out.push_back(std::move(q));
+  }
+  return out;
+}
 
 SublevelEnclosure EncloseSublevel(const Model& model, double level, int max_pieces) {
   SublevelEnclosure out;

@@ -20,7 +20,17 @@
 //               outside: |e_i . (x - c)| <= r_i (1 + max(t, 0) / r_min)
 //   paraboloid  f = h + (kappa / 2) |w|^2 >= h when kappa >= 0: {h <= t} (sigma = -1 and
 //               kappa <= 0: {-h <= t})
-//   other kinds, and sigma = -1 of closed primitives: all of space (no bound).
+//   other kinds: all of space (no bound).
+// The outside of a convex primitive (sigma = -1: {f >= -t}) is not convex, so it is not made
+// into faces at once: it is deferred (EnclosurePiece::outside). K_t = {f < -t} (the inner
+// parallel body: a ball of radius r - t, a cylinder of radius r - t, the cone moved t / sin(a)
+// along its axis, the box shrunk by t; for the ellipsoid |y| < 1 - t / r_min, since there
+// f <= (|y| - 1) r_min) holds an inscribed convex polyhedron I (octagonal prism, pyramid of 8
+// generators, box, cube with vertices on the ball or the ellipsoid's |y| = s sphere), and
+// {f >= -t} lies in the complement of I, the union of the half-spaces n_i . x >= d_i over I's
+// faces. SplitOnOutside replaces a piece's first deferred literal by those half-spaces: one
+// piece per face (none of them is needed unless the piece alone is unbounded: a cylinder minus a
+// coaxial wider bore, a wedge of planes minus a cone that swallows its far part).
 // Operators fold left to right, op(op(c0, c1), c2); with subtrahends negated (difference:
 // c0, -c1, -c2, ...) every step is max-like or min-like. Li & Phillips' S_abs satisfies
 // |t| <= S_abs(t) <= |t| + delta / 2 (when 0 < epsilon <= delta: in the parabolic zone
@@ -57,6 +67,12 @@ struct EnclosurePiece {
   std::vector<HalfSpace> faces;
   std::string label;  // the literals it comes from, e.g. "p3 & !p7"; "!" = superlevel side
   std::string unbounded_reason;  // the nodes on the way that gave no bound (e.g. "a quadric")
+  // Deferred literals {f_node >= -level} of convex primitives (see above).
+  struct Outside {
+    int node = 0;
+    double level = 0.0;
+  };
+  std::vector<Outside> outside;
 };
 
 struct SublevelEnclosure {
@@ -65,5 +81,10 @@ struct SublevelEnclosure {
 };
 
 SublevelEnclosure EncloseSublevel(const Model& model, double level = 0.0, int max_pieces = 512);
+
+// The piece with its first deferred literal replaced by the faces of the complement of the
+// literal's inscribed polyhedron: one piece per face, or the piece without the literal when
+// {f >= -level} is all of space (K_t empty). Precondition: !piece.outside.empty().
+std::vector<EnclosurePiece> SplitOnOutside(const Model& model, const EnclosurePiece& piece);
 
 }  // namespace implicitfit

@@ -95,6 +95,28 @@ TEST(SolidVerification, AcceptsACylinderWithCaps) {
   EXPECT_EQ(v.components.solids, 1);
 }
 
+TEST(SolidVerification, ProvesATubeBoundedByTheConeThatSwallowsIt) {
+  // A tube r = 1 above z = 0 minus a cone (apex (0, 0, 1), axis +z, 60 degrees): the cone's
+  // radius passes 1 at z = 1 + 1 / tan(60 deg) = 1.577, so the solid ends there. The tube's
+  // polyhedron alone is unbounded; only the split on the cone's outside proves it.
+  Model m;
+  const int side = m.AddPrimitive(NodeType::kCylinder, {0, 0, 0, 0, 0, 1, 1.0}, "side");
+  const int floor = AddPlane(&m, -Vec::UnitZ(), 0.0, "floor");
+  const int tube = m.AddOperator(NodeType::kIntersection, {side, floor}, 0.1, 0.1, 0);
+  const int cone = m.AddPrimitive(NodeType::kCone, {0, 0, 1, 0, 0, 1, M_PI / 3}, "cone");
+  m.SetRoot(m.AddOperator(NodeType::kDifference, {tube, cone}, 0.1, 0.1, 0));
+  const PointCloud cloud = Sample(m, Vec(-1.5, -1.5, -0.5), Vec(1.5, 1.5, 2.0));
+  const SolidVerification v = VerifySolid(m, cloud.points, cloud.normals);
+  ASSERT_TRUE(v.bounded) << v.message;
+  EXPECT_GT(v.split_pieces, 0);
+  EXPECT_GE(v.bounds_max.z(), 1 + 1 / std::tan(M_PI / 3));
+  EXPECT_LE(v.bounds_max.z(), 3.0);
+  // independently: f > 0 on the axis above the bounds and at random far points
+  for (double z = v.bounds_max.z() + 1e-6; z < 1e4; z *= 2)
+    EXPECT_GT(m.Value(Vec(0, 0, z)), 0) << z;
+  EXPECT_TRUE(v.verified) << v.message;
+}
+
 TEST(SolidVerification, RefusesASinglePlane) {
   Model plane;
   plane.SetRoot(AddPlane(&plane, Vec::UnitZ(), 0.0, "p0"));
