@@ -14,6 +14,7 @@
 #include "fit/reconstruct/offset_samples.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/reconstruct/solid_bounding.h"
+#include "fit/reconstruct/unsupported_repair.h"
 #include "fit/tree/tree_covariance.h"
 
 namespace implicitfit {
@@ -590,6 +591,15 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   SolidVerificationOptions vo = options.verification;
   if (!vo.progress) vo.progress = options.progress;
   out.verification = VerifySolid(out.model, points, normals, vo);
+  if (!out.verification.verified) {  // unsupported pieces alone: removed when that verifies
+    const PieceRepair repair =
+        RepairUnsupportedPieces(&out.model, &out.verification, points, normals, vo);
+    if (repair.verified) {
+      out.expression = "(" + out.expression + ")" + repair.expression;
+      out.filled_cavities = repair.filled;
+      out.removed_pieces = repair.removed;
+    }
+  }
   ClaimVerification(out.verification, &out.model);
   out.bounded = out.verification.bounded;
   out.success = out.verification.verified;

@@ -31,7 +31,10 @@
 //   6. verification (fit/reconstruct/solid_verification.h): bounded (proven), inside/outside
 //      agrees with the oriented cloud, every piece and cavity supported by scan points; success
 //      only when it passes. The model's leaves carry the primitives' names (so the expression
-//      maps to the model) and its claims (ModelClaims) the proven bounds and the verdict.
+//      maps to the model) and its claims (ModelClaims) the proven bounds and the verdict. When
+//      only unsupported pieces fail it, each is filled (a cavity) or cut away (a solid piece) by
+//      its cell of the arrangement, and the result verified again
+//      (fit/reconstruct/unsupported_repair.h); kept only when it verifies.
 // Progress (options.progress, fit/common/progress.h): stages "orientation" (steps 1-2),
 // "separation" (3), "blends" (4), "tree fit" (5), "verification" (6).
 // The implied fillet radius of a blend: on the bisector of two faces whose outward normals make
@@ -124,6 +127,9 @@ struct SolidReconstruction {
   std::vector<AddedPlane> separators, closures;
   std::vector<AddedCylinder> separator_cylinders;
   SolidVerification verification;  // step 6; success = verification.verified
+  // Unsupported pieces repaired (fit/reconstruct/unsupported_repair.h; the expression shows the
+  // added terms): cavities filled, solid pieces cut away.
+  int filled_cavities = 0, removed_pieces = 0;
   double seconds = 0.0;
   double fit_seconds = 0.0;  // of which the joint refinement (step 5)
   int fit_iterations = 0;

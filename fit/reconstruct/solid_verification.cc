@@ -142,26 +142,6 @@ void CheckBounded(const Model& model, const Vec& cloud_lo, const Vec& cloud_hi, 
   v->bounded = true;
 }
 
-// The leaves below the root, one entry per name (a literal may appear in several terms).
-std::vector<std::pair<std::string, int>> NamedLeaves(const Model& model) {
-  std::vector<std::pair<std::string, int>> leaves;
-  std::vector<int> stack = {model.root()};
-  while (!stack.empty()) {
-    const int index = stack.back();
-    stack.pop_back();
-    const ModelNode& node = model.nodes()[index];
-    if (IsOperator(node.type) || node.type == NodeType::kComplement) {
-      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
-      continue;
-    }
-    const std::string name = node.name.empty() ? model.NodeLabel(index) : node.name;
-    bool known = false;
-    for (const auto& leaf : leaves) known = known || leaf.first == name;
-    if (!known) leaves.push_back({name, index});
-  }
-  return leaves;
-}
-
 // First-order distance of one node at x (central differences for the gradient).
 double NodeDistance(const Model& m, int node, const Vec& x, double h) {
   const double* p = m.parameters().data();
@@ -188,7 +168,7 @@ void CheckAgreement(const Model& model, const std::vector<Vec>& points,
   }
   v->sigma = 1.4826 * Median(d);
   const double floor = std::max(3 * v->sigma, 1e-3 * diag);
-  const std::vector<std::pair<std::string, int>> leaves = NamedLeaves(model);
+  const std::vector<std::pair<std::string, int>> leaves = SolidLeaves(model);
   std::vector<int> leaf_points(leaves.size(), 0), leaf_agree(leaves.size(), 0);
   v->points = static_cast<int>(n);
   for (size_t i = 0; i < n; ++i) {
@@ -387,6 +367,25 @@ nlohmann::json SolidVerification::ToJson() const {
   j["pieces"] = pieces;
   j["seconds"] = seconds;
   return j;
+}
+
+std::vector<std::pair<std::string, int>> SolidLeaves(const Model& model) {
+  std::vector<std::pair<std::string, int>> leaves;
+  std::vector<int> stack = {model.root()};
+  while (!stack.empty()) {
+    const int index = stack.back();
+    stack.pop_back();
+    const ModelNode& node = model.nodes()[index];
+    if (IsOperator(node.type) || node.type == NodeType::kComplement) {
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
+      continue;
+    }
+    const std::string name = node.name.empty() ? model.NodeLabel(index) : node.name;
+    bool known = false;
+    for (const auto& leaf : leaves) known = known || leaf.first == name;
+    if (!known) leaves.push_back({name, index});
+  }
+  return leaves;
 }
 
 void ClaimVerification(const SolidVerification& v, Model* model) {

@@ -122,6 +122,10 @@ SolidVerification VerifySolid(const Model& model, const std::vector<Eigen::Vecto
 void DefaultSolidGrid(const Eigen::Vector3d& bounds_min, const Eigen::Vector3d& bounds_max,
                       int cells, Eigen::Vector3d* lo, Eigen::Vector3d* hi, double* cell);
 
+// The leaves below the root, one (name, node index) per name, in tree order (a literal copied
+// into several terms counts once); unnamed leaves are named by their path (Model::NodeLabel).
+std::vector<std::pair<std::string, int>> SolidLeaves(const Model& model);
+
 // Writes the verification's claims into the model (ModelClaims: the bounds when proven, and
 // verified or not with the reason).
 void ClaimVerification(const SolidVerification& v, Model* model);
