@@ -1,36 +1,21 @@
 #include "fit/reconstruct/unsupported_repair.h"
 
+#include "model/primitives/primitive_kinds.h"
+
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
 
-bool IsPlainPrimitive(NodeType type) {
-  switch (type) {
-    case NodeType::kPlane:
-    case NodeType::kSphere:
-    case NodeType::kCylinder:
-    case NodeType::kCone:
-    case NodeType::kTorus:
-    case NodeType::kEllipsoid:
-    case NodeType::kQuadric:
-    case NodeType::kBox:
-    case NodeType::kParaboloid:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // Adds the cell of w (over the leaves) to *m as a sharp intersection; returns its node, or -1
-// when a leaf is not a plain primitive. *text gets the cell as an expression.
+// when a leaf is not a primitive. *text gets the cell as an expression.
 int AddCell(const std::vector<std::pair<std::string, int>>& leaves, const Vec& w, double placeholder,
             Model* m, std::string* text) {
   std::vector<int> literals;
   text->clear();
   for (const auto& [name, index] : leaves) {
     const ModelNode node = m->nodes()[index];
-    if (!IsPlainPrimitive(node.type)) return -1;
+    if (!FindPrimitiveKind(node.type)) return -1;  // a primitive of the kinds table only
     const double* p = m->parameters().data() + node.first_parameter;
     const std::vector<double> parameters(p, p + node.num_parameters);
     const bool leaf_inside = m->EvaluateNode(index, m->parameters().data(), w.data()) < 0;
