@@ -15,7 +15,7 @@ struct Grid {
   Vec origin;
   double h = 0;
   int n[3] = {0, 0, 0};
-  std::vector<double> f;
+  std::vector<char> inside;  // f < 0 at the node
   long Index(int i, int j, int k) const { return i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k); }
   Vec Node(long index) const {
     const int i = static_cast<int>(index % n[0]);
@@ -23,19 +23,108 @@ struct Grid {
     const int k = static_cast<int>(index / (static_cast<long>(n[0]) * n[1]));
     return origin + h * Vec(i, j, k);
   }
-  bool Inside(long index) const { return f[index] < 0; }
+  bool Inside(long index) const { return inside[index] != 0; }
+  long Size() const { return static_cast<long>(inside.size()); }
 };
 
-void FillValues(const Model& model, int threads, Grid* g) {
-  g->f.assign(static_cast<size_t>(g->n[0]) * g->n[1] * g->n[2], 0.0);
+// Whether f < 0 at x, exactly as Model::Value's sign, with sharp operators short-circuited: a
+// sharp intersection (f = max of its children) is inside when every child is, a sharp union
+// (min) when some child is, a sharp difference (max(c0, -c1, ...)) when c0 is inside and every
+// subtrahend strictly outside; anything else is evaluated (NaN counts as outside).
+bool InsideAt(const Model& m, int index, const double* x) {
+  const ModelNode& node = m.nodes()[index];
+  if (IsOperator(node.type) && node.order == 0) {
+    if (node.type == NodeType::kUnion) {
+      for (int c : node.children)
+        if (InsideAt(m, c, x)) return true;
+      return false;
+    }
+    if (!InsideAt(m, node.children[0], x)) return false;
+    for (size_t c = 1; c < node.children.size(); ++c) {
+      if (node.type == NodeType::kIntersection) {
+        if (!InsideAt(m, node.children[c], x)) return false;
+      } else if (!(m.EvaluateNode(node.children[c], m.parameters().data(), x) > 0)) {
+        return false;
+      }
+    }
+    return true;
+  }
+  return m.EvaluateNode(index, m.parameters().data(), x) < 0;
+}
+
+// True when f is 1-Lipschitz: every leaf an exact signed distance (plane, sphere, cylinder,
+// cone, torus, box), every operator sharp (a max or min of 1-Lipschitz functions) or a
+// complement.
+bool OneLipschitz(const Model& m, int index) {
+  const ModelNode& node = m.nodes()[index];
+  if (IsOperator(node.type) || node.type == NodeType::kComplement) {
+    if (IsOperator(node.type) && node.order != 0) return false;
+    for (int c : node.children)
+      if (!OneLipschitz(m, c)) return false;
+    return true;
+  }
+  switch (node.type) {
+    case NodeType::kPlane:
+    case NodeType::kSphere:
+    case NodeType::kCylinder:
+    case NodeType::kCone:
+    case NodeType::kTorus:
+    case NodeType::kBox:
+      return true;
+    default:
+      return false;
+  }
+}
+
+constexpr int kStride = 4;  // coarse nodes: every 4th along each axis
+
+// The signs at every node. When f is 1-Lipschitz, f is first evaluated on the coarse nodes; a
+// node within r of a coarse node c with |f(c)| > r (+ rounding) has c's sign, so only the nodes
+// near the surface are decided one by one (by InsideAt).
+void FillSigns(const Model& model, int threads, Grid* g) {
+  g->inside.assign(static_cast<size_t>(g->n[0]) * g->n[1] * g->n[2], 0);
+  const bool lipschitz = OneLipschitz(model, model.root());
+  int nc[3];
+  for (int a = 0; a < 3; ++a) nc[a] = (g->n[a] - 1) / kStride + 1;
+  std::vector<double> coarse(lipschitz ? static_cast<size_t>(nc[0]) * nc[1] * nc[2] : 0);
+  auto coarse_index = [&](int i, int j, int k) { return i + nc[0] * (j + static_cast<long>(nc[1]) * k); };
+  auto fill_coarse = [&](int t) {
+    for (int k = t; k < nc[2]; k += threads)
+      for (int j = 0; j < nc[1]; ++j)
+        for (int i = 0; i < nc[0]; ++i)
+          coarse[coarse_index(i, j, k)] =
+              model.Value(g->origin + g->h * kStride * Vec(i, j, k));
+  };
+  const double rounding = 1e-9 * (1.0 + g->origin.norm() + g->h * (g->n[0] + g->n[1] + g->n[2]));
   auto work = [&](int t) {
     for (int k = t; k < g->n[2]; k += threads)
       for (int j = 0; j < g->n[1]; ++j)
         for (int i = 0; i < g->n[0]; ++i) {
-          const double v = model.Value(g->origin + g->h * Vec(i, j, k));
-          g->f[g->Index(i, j, k)] = std::isnan(v) ? g->h : v;  // NaN counts as outside
+          const Vec x = g->origin + g->h * Vec(i, j, k);
+          if (lipschitz) {
+            int c[3];
+            const int ijk[3] = {i, j, k};
+            double r2 = 0;
+            for (int a = 0; a < 3; ++a) {
+              c[a] = std::min(nc[a] - 1, (ijk[a] + kStride / 2) / kStride);
+              const double d = (ijk[a] - c[a] * kStride) * g->h;
+              r2 += d * d;
+            }
+            const double f = coarse[coarse_index(c[0], c[1], c[2])];
+            if (std::abs(f) > std::sqrt(r2) + rounding) {
+              g->inside[g->Index(i, j, k)] = f < 0;
+              continue;
+            }
+          }
+          g->inside[g->Index(i, j, k)] = InsideAt(model, model.root(), x.data());
         }
   };
+  if (lipschitz) {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(fill_coarse, t);
+    fill_coarse(0);
+    for (std::thread& t : pool) t.join();
+  }
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
@@ -52,8 +141,8 @@ struct Component {
 };
 
 // Labels the components (26-connected inside, 6-connected outside) by breadth-first search.
-std::vector<Component> Label(const Grid& g, std::vector<int>* label) {
-  const long total = static_cast<long>(g.f.size());
+std::vector<Component> Label(const Model& model, const Grid& g, std::vector<int>* label) {
+  const long total = g.Size();
   label->assign(total, -1);
   std::vector<Component> comps;
   std::vector<long> queue;
@@ -75,7 +164,6 @@ std::vector<Component> Label(const Grid& g, std::vector<int>* label) {
         c.hi[a] = std::max(c.hi[a], ijk[a]);
         c.on_face = c.on_face || ijk[a] == 0 || ijk[a] == g.n[a] - 1;
       }
-      if (c.deepest < 0 || std::abs(g.f[at]) > std::abs(g.f[c.deepest])) c.deepest = at;
       for (int dk = -1; dk <= 1; ++dk)
         for (int dj = -1; dj <= 1; ++dj)
           for (int di = -1; di <= 1; ++di) {
@@ -89,6 +177,17 @@ std::vector<Component> Label(const Grid& g, std::vector<int>* label) {
             (*label)[next] = id;
             queue.push_back(next);
           }
+    }
+    // The witness: of up to 64 of its nodes spread over the search order, the one with the
+    // largest |f| (deep inside the piece).
+    double deepest = -1;
+    const size_t step = std::max<size_t>(1, queue.size() / 64);
+    for (size_t q = 0; q < queue.size(); q += step) {
+      const double f = std::abs(model.Value(g.Node(queue[q])));
+      if (f > deepest) {
+        deepest = f;
+        c.deepest = queue[q];
+      }
     }
     comps.push_back(c);
   }
@@ -130,13 +229,13 @@ SolidComponents FindSolidComponents(const Model& model, const Vec& lo, const Vec
   out.hi = lo + g.h * Vec(g.n[0] - 1, g.n[1] - 1, g.n[2] - 1);
   out.cell = g.h;
   for (int a = 0; a < 3; ++a) out.grid[a] = g.n[a];
-  FillValues(model, ThreadCountOrDefault(options.num_threads), &g);
+  FillSigns(model, ThreadCountOrDefault(options.num_threads), &g);
   std::vector<int> label;
-  std::vector<Component> comps = Label(g, &label);
+  std::vector<Component> comps = Label(model, g, &label);
 
   // Scan points near the surface: the nodes they see, the components they count for.
   const double band = options.band > 0 ? options.band : g.h;
-  std::vector<char> seen(g.f.size(), 0);
+  std::vector<char> seen(g.inside.size(), 0);
   std::vector<int> counted;
   for (const Vec& p : points) {
     double f;

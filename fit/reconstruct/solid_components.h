@@ -1,6 +1,8 @@
 // The pieces of a solid on a grid, and which of them the scan supports (the third check of
 // fit/reconstruct/solid_verification.h).
-//   1. f is sampled at the nodes of a regular grid of cell h over a box that holds the solid;
+//   1. the sign of f is found at the nodes of a regular grid of cell h over a box that holds
+//      the solid (exactly Model::Value's sign; sharp operators short-circuit: an intersection
+//      is outside at its first child outside, a union inside at its first child inside);
 //   2. inside nodes (f < 0) are joined into components through their 26 neighbours, outside
 //      nodes (f >= 0) through their 6 face neighbours (the usual pairing of digital topology, so
 //      a surface separates exactly one inside from one outside component); the outside
@@ -30,7 +32,7 @@ struct SolidPiece {
   int nodes = 0;        // grid nodes in it
   double volume = 0.0;  // nodes * h^3
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();  // its nodes' box
-  Eigen::Vector3d witness = Eigen::Vector3d::Zero();  // its node farthest from the surface
+  Eigen::Vector3d witness = Eigen::Vector3d::Zero();  // of 64 of its nodes, the largest |f|
   int support_points = 0;
   int boundary_edges = 0, covered_edges = 0;
   double coverage = 0.0;

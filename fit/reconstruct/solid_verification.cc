@@ -142,19 +142,6 @@ void CheckBounded(const Model& model, const Vec& cloud_lo, const Vec& cloud_hi, 
   v->bounded = true;
 }
 
-// First-order distance of one node at x (central differences for the gradient).
-double NodeDistance(const Model& m, int node, const Vec& x, double h) {
-  const double* p = m.parameters().data();
-  Vec g;
-  for (int k = 0; k < 3; ++k) {
-    Vec a = x, b = x;
-    a[k] += h;
-    b[k] -= h;
-    g[k] = (m.EvaluateNode(node, p, a.data()) - m.EvaluateNode(node, p, b.data())) / (2 * h);
-  }
-  return std::abs(m.EvaluateNode(node, p, x.data())) / std::max(g.norm(), 1e-300);
-}
-
 // 2. Offset samples on both sides of every explained point, overall and per primitive.
 void CheckAgreement(const Model& model, const std::vector<Vec>& points,
                     const std::vector<Vec>& normals, double diag,
@@ -181,7 +168,9 @@ void CheckAgreement(const Model& model, const std::vector<Vec>& points,
     int nearest = 0;
     double best = 1e300;
     for (size_t k = 0; k < leaves.size(); ++k) {
-      const double dk = NodeDistance(model, leaves[k].second, points[i], 1e-6 * diag);
+      // |f| of a leaf: every primitive's f is a distance, exact or first-order (model/model.h)
+      const double dk = std::abs(
+          model.EvaluateNode(leaves[k].second, model.parameters().data(), points[i].data()));
       if (dk < best) {
         best = dk;
         nearest = static_cast<int>(k);

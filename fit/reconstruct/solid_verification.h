@@ -19,7 +19,8 @@
 //      noise about the model). Points farther than max_offset (of the diagonal) from the
 //      surface are not explained by the model: they count in `explained`, not in the
 //      agreement. Agreement over the explained points >= min_agreement, and for each primitive
-//      (the leaf of the tree nearest the point, by first-order distance) with at least
+//      (the leaf of the tree with the smallest |f| at the point; a primitive's f is a distance,
+//      exact or first-order) with at least
 //      min_primitive_points points >= min_primitive_agreement; explained share >=
 //      min_explained.
 //   3. no unsupported pieces: the grid of `mesh`'s default for these bounds (the bounds grown
