@@ -165,14 +165,15 @@
     else geometry.computeVertexNormals();
     var colour = L.colour || MESH[entry.ordinal % MESH.length];
     // Front faces lit in the layer's colour; back faces (the inside of a solid, seen through the
-    // clipping plane or an open boundary) flat red. Pushed back a little so that points lying on
-    // the surface stay visible.
+    // clipping plane or an open boundary) flat red. Both pushed back a little so that points
+    // lying on the surface stay visible, the back faces further: near a silhouette, where front
+    // and back faces meet edge-on, the back faces must stay behind.
     var front = new THREE.MeshLambertMaterial({ color: colour, side: THREE.FrontSide,
                                                 polygonOffset: true, polygonOffsetFactor: 1,
                                                 polygonOffsetUnits: 1 });
     var back = new THREE.MeshBasicMaterial({ color: INSIDE, side: THREE.BackSide,
-                                             polygonOffset: true, polygonOffsetFactor: 1,
-                                             polygonOffsetUnits: 1 });
+                                             polygonOffset: true, polygonOffsetFactor: 4,
+                                             polygonOffsetUnits: 4 });
     var group = new THREE.Group();
     group.add(new THREE.Mesh(geometry, front));
     group.add(new THREE.Mesh(geometry, back));

@@ -201,14 +201,16 @@ CommandAction AddBatchCommand(CLI::App& app) {
       const std::vector<BatchOutcome> outcomes = RunBatchOverMpi(inputs, options, on_done);
       if (mpi.rank() != 0) return 0;  // rank 0 reports (mpirun exits with its code)
       progress.Finish();
+      const int code = Finish(outcomes, summary_path, SecondsSince(start));
       if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
-      return Finish(outcomes, summary_path, SecondsSince(start));
+      return code;
     }
 #endif
     const std::vector<BatchOutcome> outcomes = RunBatch(inputs, options, on_done);
     progress.Finish();
+    const int code = Finish(outcomes, summary_path, SecondsSince(start));
     if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
-    return Finish(outcomes, summary_path, SecondsSince(start));
+    return code;
   };
 }
 

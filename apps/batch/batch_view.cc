@@ -92,8 +92,9 @@ size_t WriteBatchViews(const std::vector<BatchInput>& inputs,
     page_errors[i] = WriteInputPage(inputs[i], options);
     written += page_errors[i].empty();
   }
-  WriteFileAtomically((fs::path(options.out_dir) / index_name).string(),
-                      IndexHtml(inputs, outcomes, options, page_errors));
+  const std::string index = (fs::path(options.out_dir) / index_name).string();
+  WriteFileAtomically(index, IndexHtml(inputs, outcomes, options, page_errors));
+  std::printf("index: %s (%zu pages)\n", index.c_str(), written);
   return written;
 }
 

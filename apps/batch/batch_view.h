@@ -14,8 +14,8 @@
 
 namespace implicitfit {
 
-// Writes the pages and the index (named index_name, inside options.out_dir); progress on stderr
-// unless quiet. Returns the number of pages written.
+// Writes the pages and the index (named index_name, inside options.out_dir) and prints
+// "index: PATH (N pages)" on stdout; progress on stderr unless quiet. Returns N.
 size_t WriteBatchViews(const std::vector<BatchInput>& inputs,
                        const std::vector<BatchOutcome>& outcomes, const BatchOptions& options,
                        const std::string& index_name, bool quiet);
