@@ -7,9 +7,9 @@
 // Exit 0 written; 2 for invalid usage, an unreadable input (nothing written) or no Chromium
 // for --png (checked before anything is read or written).
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <set>
-#include <sstream>
 
 #include "apps/command.h"
 #include "datasets/io/atomic_file.h"
@@ -23,30 +23,12 @@ namespace {
 
 struct ViewArgs {
   std::vector<std::string> inputs, options;
-  std::vector<double> box;
-  std::string out, png, size = "1000x750", clip, camera, color, labels, title;
+  std::vector<double> box, camera;
+  std::string out, png, size = "1000x750", clip, color, labels, title;
   double zoom = 0.0, scale = 0.0;
   int resolution = 100, point_size = 0;
   bool hide_panel = false, quiet = false;
 };
-
-std::vector<double> Numbers(const std::string& text, const std::string& option, size_t count) {
-  std::vector<double> v;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      v.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError(option + " " + text + ": '" + item + "' is not a number");
-    }
-  }
-  if (v.size() != count)
-    throw InputError(option + " " + text + ": expected " + std::to_string(count) + " numbers");
-  return v;
-}
 
 // The page's default options (docs/view.md keys) from the command's arguments.
 std::map<std::string, std::string> PageOptions(const ViewArgs& a) {
@@ -57,15 +39,17 @@ std::map<std::string, std::string> PageOptions(const ViewArgs& a) {
     static const std::set<std::string> kAxes = {"x", "y", "z", "-x", "-y", "-z"};
     if (!kAxes.count(axis)) throw InputError("--clip " + a.clip + ": the axis is x, y, z, -x, -y or -z");
     if (comma != std::string::npos) {
-      const double t = Numbers(a.clip.substr(comma + 1), "--clip", 1)[0];
-      if (t < 0 || t > 1) throw InputError("--clip " + a.clip + ": the position is in [0, 1]");
+      const std::string position = a.clip.substr(comma + 1);
+      char* end = nullptr;
+      const double t = std::strtod(position.c_str(), &end);
+      if (position.empty() || *end != '\0' || !(t >= 0 && t <= 1))
+        throw InputError("--clip " + a.clip + ": the position is a number in [0, 1]");
     }
     o["clip"] = a.clip;
   }
   if (!a.camera.empty()) {
-    const std::vector<double> v = Numbers(a.camera, "--camera", 2);
-    o["az"] = std::to_string(v[0]);
-    o["el"] = std::to_string(v[1]);
+    o["az"] = std::to_string(a.camera[0]);
+    o["el"] = std::to_string(a.camera[1]);
   }
   if (a.zoom > 0) o["zoom"] = std::to_string(a.zoom);
   if (!a.color.empty()) {
@@ -99,7 +83,9 @@ CommandAction AddViewCommand(CLI::App& app) {
   cmd->add_option("--clip", a->clip,
                   "Clipping plane AXIS[,T]: keeps the part below the plane across x, y, z (or "
                   "above for -x, -y, -z) at the fraction T of the box (default 0.5)");
-  cmd->add_option("--camera", a->camera, "Camera direction AZ,EL in degrees (z up; default -60,25)");
+  cmd->add_option("--camera", a->camera, "Camera direction AZ,EL in degrees (z up; default -60,25)")
+      ->delimiter(',')
+      ->expected(2);
   cmd->add_option("--zoom", a->zoom, "Camera zoom (default 1: the whole box in view)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--color", a->color, "Point colours: auto (default), primitive, residual, plain");
@@ -138,8 +124,9 @@ CommandAction AddViewCommand(CLI::App& app) {
       if (!(options.box_min.array() < options.box_max.array()).all())
         throw InputError("--box: every min must be below its max");
     }
+    std::map<std::string, std::string> page_options = PageOptions(*a);  // checked before reading
     ViewPage page = ReadViewInputs(a->inputs, options);
-    page.options = PageOptions(*a);
+    page.options = std::move(page_options);
     if (!a->title.empty()) page.title = a->title;
     const std::string html = PageHtml(page);
     size_t points = 0, triangles = 0;
