@@ -127,6 +127,9 @@ ViewPage ReadViewInputs(const std::vector<std::string>& inputs, const ViewInputO
   // 1. Every input's kind (reading JSON and PLY headers: missing files are named here).
   std::vector<InputKind> kinds;
   for (const std::string& path : inputs) kinds.push_back(Classify(path));
+  if (!options.labels.empty() &&
+      std::find(kinds.begin(), kinds.end(), InputKind::kScene) == kinds.end())
+    throw InputError("--labels " + options.labels + ": labels apply to a scene's cloud; no scene given");
   // 2. Clouds, then the scenes (each takes a cloud input of its size, or reads its own).
   std::vector<std::optional<CloudInput>> clouds(inputs.size());
   for (size_t i = 0; i < inputs.size(); ++i)
