@@ -1,7 +1,8 @@
 // The assets of a view page, embedded at build time (view/embed_assets.cmake): the HTML
 // template view/page.html with its markers, the viewer view/viewer.js, and three.js r111 with its
 // OrbitControls from Debian's libjs-three (MIT licence), inlined into every page so that it
-// opens without network access.
+// opens without network access. ThreeJs() and OrbitControlsJs() are empty in a build without
+// libjs-three (PageHtml then refuses).
 #pragma once
 
 #include <string_view>

@@ -198,6 +198,10 @@ std::string HtmlEscape(const std::string& text) {
 }
 
 std::string PageHtml(const ViewPage& page) {
+  if (ThreeJs().empty() || OrbitControlsJs().empty())
+    throw std::runtime_error(
+        "this implicitfit was built without three.js: install Debian's libjs-three "
+        "(scripts/setup.sh) and rebuild to write view pages");
   Json layers = Json::array();
   Box box;
   for (const ViewLayer& layer : page.layers) {
