@@ -102,7 +102,8 @@ CommandAction AddViewCommand(CLI::App& app) {
   cmd->add_option("--point-size", a->point_size, "Point size in pixels (default by count)")
       ->check(CLI::Range(1, 20));
   cmd->add_option("--option", a->options,
-                  "Any page option KEY=VALUE (docs/view.md: camera, target, fov, hide, ...)");
+                  "Any page option KEY=VALUE (docs/view.md: camera, target, fov, hide, ...)")
+      ->allow_extra_args(false);  // one KEY=VALUE per --option: later words stay INPUTs
   cmd->add_option("--title", a->title, "Page title (default: the input names)");
   cmd->add_flag("--quiet", a->quiet, "No progress on stderr");
   return [a]() {

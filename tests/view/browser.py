@@ -25,7 +25,8 @@ def chromium():
 
 
 def screenshot(page, png, width=400, height=300, fragment=""):
-    """Draws the page (a file) in headless Chromium into png; returns the PNG path."""
+    """Draws the page (a file) in headless Chromium into png; returns the PNG path. Fails when
+    the page's script throws (an uncaught error in Chromium's console log)."""
     binary = chromium()
     assert binary, "Chromium is not installed"
     url = Path(page).resolve().as_uri() + ("#" + fragment if fragment else "")
@@ -35,10 +36,13 @@ def screenshot(page, png, width=400, height=300, fragment=""):
              "--use-angle=swiftshader", "--disable-background-networking",
              "--disable-component-update", "--disable-sync", "--no-first-run",
              "--hide-scrollbars", "--force-device-scale-factor=1",
+             "--enable-logging=stderr", "--v=0",  # the page's console, for errors
              f"--user-data-dir={profile}", f"--screenshot={png}",
              f"--window-size={width},{height}", url],
             capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
     assert r.returncode == 0 and Path(png).exists(), r.stderr[-2000:]
+    errors = [line for line in r.stderr.splitlines() if "CONSOLE" in line and "Uncaught" in line]
+    assert not errors, f"{page}#{fragment}: {errors}"
     return png
 
 
