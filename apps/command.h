@@ -20,5 +20,6 @@ CommandAction AddReconstructCommand(CLI::App& app);
 CommandAction AddDetectCommand(CLI::App& app);
 CommandAction AddDesignCommand(CLI::App& app);
 CommandAction AddVerifyCommand(CLI::App& app);
+CommandAction AddViewCommand(CLI::App& app);
 
 }  // namespace implicitfit

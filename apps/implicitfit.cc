@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   actions["detect"] = AddDetectCommand(app);
   actions["design"] = AddDesignCommand(app);
   actions["verify"] = AddVerifyCommand(app);
+  actions["view"] = AddViewCommand(app);
 
   try {
     app.parse(argc, argv);

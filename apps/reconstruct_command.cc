@@ -17,6 +17,7 @@
 #include "apps/command.h"
 #include "apps/progress_printer.h"
 #include "apps/reconstruct_job.h"
+#include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -27,7 +28,7 @@ namespace implicitfit {
 namespace {
 
 struct ReconstructArgs {
-  std::string cloud, out, scene, mesh, report;
+  std::string cloud, out, scene, mesh, report, view;
   unsigned seed = 1;
   bool quiet = false, keep_unverified = false;
 };
@@ -55,6 +56,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
   cmd->add_option("--mesh", a->mesh, "Also write a mesh of the solid (.ply)");
   cmd->add_option("--report", a->report,
                   "Report (JSON): RMS, normal agreement, blends with deviations");
+  cmd->add_option("--view", a->view, "A page of the solid and the cloud (docs/view.md)");
   cmd->add_option("--seed", a->seed, "Random seed");
   cmd->add_flag("--quiet", a->quiet, "No progress on stderr (failures are still reported)");
   cmd->add_flag("--keep-unverified", a->keep_unverified,
@@ -102,6 +104,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
                    seconds, r.message);
       return 1;
     }
+    if (!a->view.empty()) WriteReconstructionView(job, a->cloud, a->view);
     std::cout << report.dump(2) << "\n";
     PrintSummary("reconstruct", a->quiet, true, "verified solid", seconds,
                  Details(r, job.primitives.size()) + " -> " + a->out);

@@ -92,6 +92,7 @@ CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
     stage.End(std::to_string(detection.scene.primitives.size()) + " primitives");
     out.cloud = std::move(detection.cloud);
     out.primitives = PrimitivesOfScene(detection.scene);
+    out.labels = detection.result.labels;
     out.detected = true;
   } else {
     const Scene scene = ReadSceneFile(scene_path);
