@@ -1,13 +1,23 @@
 // implicitfit reconstruct CLOUD --out MODEL.json [--scene SCENE.json] [--mesh MESH.ply]
-//                         [--report R.json] [--seed s]
+//                         [--report R.json] [--seed s] [--quiet] [--keep-unverified]
 // A solid model of the scan (fit/reconstruct/solid_reconstruction.h) from the primitives of a scene file
 // (datasets/io/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
 // with its defaults and the same seed (apps/reconstruct_job.h).
+// The solid verifies itself (fit/reconstruct/solid_verification.h) before anything but the report
+// is written: a solid that fails exits 1 with the reason and writes no model and no mesh;
+// --keep-unverified writes them anyway, the model marked {"verification": {"verified": false,
+// "reason"}} (exit 1 still). The mesh is `mesh MODEL.json`'s default for the written model (its
+// proven bounds), so the two agree. Progress on stderr per stage, one summary line at the end;
+// --quiet keeps only the failure's summary.
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
+#include "apps/progress_printer.h"
 #include "apps/reconstruct_job.h"
+#include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -18,9 +28,21 @@ namespace implicitfit {
 namespace {
 
 struct ReconstructArgs {
-  std::string cloud, out, scene, mesh, report;
+  std::string cloud, out, scene, mesh, report, view;
   unsigned seed = 1;
+  bool quiet = false, keep_unverified = false;
 };
+
+// "14 primitives, 1 solid, 0 cavities, rms 0.0123" (the summary's details).
+std::string Details(const SolidReconstruction& r, size_t primitives) {
+  std::string d = std::to_string(primitives) + " primitives";
+  if (r.verification.points > 0)
+    d += ", " + std::to_string(r.verification.components.solids) + " solid piece(s), " +
+         std::to_string(r.verification.components.cavities) + " cavities";
+  char rms[48];
+  std::snprintf(rms, sizeof rms, ", rms %.4g", r.rms);
+  return d + rms;
+}
 
 }  // namespace
 
@@ -34,33 +56,58 @@ CommandAction AddReconstructCommand(CLI::App& app) {
   cmd->add_option("--mesh", a->mesh, "Also write a mesh of the solid (.ply)");
   cmd->add_option("--report", a->report,
                   "Report (JSON): RMS, normal agreement, blends with deviations");
+  cmd->add_option("--view", a->view, "A page of the solid and the cloud (docs/view.md)");
   cmd->add_option("--seed", a->seed, "Random seed");
+  cmd->add_flag("--quiet", a->quiet, "No progress on stderr (failures are still reported)");
+  cmd->add_flag("--keep-unverified", a->keep_unverified,
+                "Write the model (marked unverified) and mesh even when verification fails");
   return [a]() {
     if (!a->mesh.empty() && (a->mesh.size() < 4 || a->mesh.substr(a->mesh.size() - 4) != ".ply"))
       throw InputError(a->mesh + ": unsupported mesh format (use .ply)");
-    const CloudReconstruction job = ReconstructCloudFile(a->cloud, a->scene, a->seed);
+    const auto start = std::chrono::steady_clock::now();
+    const ProgressCallback progress = StderrProgress("reconstruct", a->quiet);
+    CloudReconstruction job = ReconstructCloudFile(a->cloud, a->scene, a->seed, progress);
     const PointCloud& cloud = job.cloud;
     const SolidReconstruction& r = job.result;
-    const nlohmann::json& report = job.report;
+    nlohmann::json& report = job.report;
+    const bool built = r.verification.points > 0;  // a solid was built (verified or not)
+    const bool write = r.success || (a->keep_unverified && built);
+    report["model_written"] = write;
+    TriangleMesh mesh;
+    if (write && !a->mesh.empty()) {
+      MeshOptions mo;  // verified: `mesh`'s default (the proven bounds); else the cloud's box
+      if (!r.model.claims().has_bounds) {
+        mo.has_box = true;
+        Eigen::Vector3d lo = cloud.points[0], hi = cloud.points[0];
+        for (const Eigen::Vector3d& p : cloud.points) {
+          lo = lo.cwiseMin(p);
+          hi = hi.cwiseMax(p);
+        }
+        mo.box_min = lo - 0.1 * (hi - lo);
+        mo.box_max = hi + 0.1 * (hi - lo);
+      }
+      ProgressStage stage(progress, "mesh");
+      mesh = MeshModel(r.model, mo).mesh;
+      stage.End(std::to_string(mesh.triangles.size()) + " triangles");
+    }
     if (!a->report.empty()) WriteFileAtomically(a->report, report.dump(2) + "\n");
+    if (write) {
+      WriteModelFile(r.model, a->out);
+      if (!a->mesh.empty()) WriteMeshPlyFile(mesh, a->mesh);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.success) {
-      std::cerr << "implicitfit reconstruct: " << a->cloud << ": " << r.message << "\n";
+      PrintSummary("reconstruct", a->quiet, false,
+                   a->cloud + ": not verified" +
+                       std::string(write ? " (written, marked unverified)" : ", nothing written"),
+                   seconds, r.message);
       return 1;
     }
-    WriteModelFile(r.model, a->out);
-    if (!a->mesh.empty()) {
-      MeshOptions mo;
-      mo.has_box = true;
-      Eigen::Vector3d lo = cloud.points[0], hi = cloud.points[0];
-      for (const Eigen::Vector3d& p : cloud.points) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-      mo.box_min = lo - 0.1 * (hi - lo);
-      mo.box_max = hi + 0.1 * (hi - lo);
-      WriteMeshPlyFile(MeshModel(r.model, mo).mesh, a->mesh);
-    }
+    if (!a->view.empty()) WriteReconstructionView(job, a->cloud, a->view);
     std::cout << report.dump(2) << "\n";
+    PrintSummary("reconstruct", a->quiet, true, "verified solid", seconds,
+                 Details(r, job.primitives.size()) + " -> " + a->out);
     return 0;
   };
 }

@@ -30,6 +30,9 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   j["normal_sign_agreement"] = r.normal_agreement;
   j["unassigned"] = r.unassigned;
   j["seconds"] = r.seconds;
+  if (r.verification.points > 0) j["verification"] = r.verification.ToJson();
+  j["filled_cavities"] = r.filled_cavities;  // unsupported pieces repaired before verification
+  j["removed_pieces"] = r.removed_pieces;
   j["primitives"] = nlohmann::json::array();
   for (size_t k = 0; k < primitives.size() && k < r.sides.size(); ++k)
     j["primitives"].push_back(
@@ -70,7 +73,7 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
 }
 
 // The solid of the primitives, and the report.
-void Finish(unsigned seed, CloudReconstruction* out) {
+void Finish(unsigned seed, const ProgressCallback& progress, CloudReconstruction* out) {
   if (out->primitives.empty()) {
     out->result.message = "detect found no primitive";
   } else if (!out->cloud.has_normals()) {
@@ -78,6 +81,7 @@ void Finish(unsigned seed, CloudReconstruction* out) {
   } else {
     SolidReconstructionOptions options;
     options.seed = seed;
+    options.progress = progress;
     out->result =
         ReconstructSolid(out->cloud.points, out->cloud.normals, out->primitives, options);
   }
@@ -87,10 +91,17 @@ void Finish(unsigned seed, CloudReconstruction* out) {
 }  // namespace
 
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
-                                         const std::string& scene_path, unsigned seed) {
+                                         const std::string& scene_path, unsigned seed,
+                                         const ProgressCallback& progress) {
   std::string normals;
-  PointCloud cloud = ReadOrientedCloud(cloud_path, &normals);
-  if (scene_path.empty()) return ReconstructCloud(std::move(cloud), cloud_path, normals, seed);
+  PointCloud cloud;
+  {
+    ProgressStage stage(progress, "normals", cloud_path);
+    cloud = ReadOrientedCloud(cloud_path, &normals);
+    stage.End(std::to_string(cloud.size()) + " points, " + normals);
+  }
+  if (scene_path.empty())
+    return ReconstructCloud(std::move(cloud), cloud_path, normals, seed, progress);
   CloudReconstruction out;
   out.cloud = std::move(cloud);
   out.normals = normals;
@@ -101,22 +112,28 @@ CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
   if (scene.primitives.empty()) throw InputError(scene_path + ": no primitives");
   if (scene.primitives.size() > 64) throw InputError(scene_path + ": more than 64 primitives");
   out.primitives = PrimitivesOfScene(scene);
-  Finish(seed, &out);
+  Finish(seed, progress, &out);
   return out;
 }
 
 CloudReconstruction ReconstructCloud(PointCloud cloud, const std::string& name,
-                                     const std::string& normals, unsigned seed) {
+                                     const std::string& normals, unsigned seed,
+                                     const ProgressCallback& progress) {
   CloudReconstruction out;
   out.normals = normals;
-  // detect with its defaults and the same seed, on the cloud as given.
-  DetectionOptions options;
-  options.seed = seed;
-  CloudDetection detection = DetectCloud(std::move(cloud), name, normals, options);
-  out.cloud = std::move(detection.cloud);
-  out.primitives = PrimitivesOfScene(detection.scene);
+  {
+    // detect with its defaults and the same seed, on the cloud as given.
+    DetectionOptions options;
+    options.seed = seed;
+    ProgressStage stage(progress, "detect", std::to_string(cloud.size()) + " points");
+    CloudDetection detection = DetectCloud(std::move(cloud), name, normals, options);
+    stage.End(std::to_string(detection.scene.primitives.size()) + " primitives");
+    out.cloud = std::move(detection.cloud);
+    out.primitives = PrimitivesOfScene(detection.scene);
+    out.labels = detection.result.labels;
+  }
   out.detected = true;
-  Finish(seed, &out);
+  Finish(seed, progress, &out);
   return out;
 }
 

@@ -7,13 +7,18 @@
 //    "side", "points"}], "blends": [{"node", "type", "delta", "epsilon", "standard_deviations",
 //    "crease_angle_deg", "fillet_radius", "fillet_radius_standard_deviation",
 //    "transition_points"}], "closures": [{"name", "normal", "offset", "measured": false}],
-//    "separators": [same]} (fit/reconstruct/solid_bounding.h: planes no data lie on)
+//    "separators": [same]} (fit/reconstruct/solid_bounding.h: planes no data lie on),
+//    "verification": SolidVerification::ToJson() (fit/reconstruct/solid_verification.h; absent
+//    when the reconstruction stopped before a solid was built). "success" and "bounded" are true
+//    only when the verification passed / proved it.
+// Progress (stages "detect", "orientation", ..., "verification") goes to `progress`.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "datasets/clouds/point_cloud.h"
+#include "fit/common/progress.h"
 #include "fit/reconstruct/solid_reconstruction.h"
 
 namespace implicitfit {
@@ -23,6 +28,7 @@ struct CloudReconstruction {
   std::string normals;    // how the normals were obtained
   bool detected = false;  // primitives from detect (no scene given)
   std::vector<SolidPrimitive> primitives;
+  std::vector<int> labels;  // per point, detect's (empty with a scene file)
   SolidReconstruction result;
   nlohmann::json report;
 };
@@ -31,11 +37,13 @@ struct CloudReconstruction {
 // A cloud without normals, or on which detect finds nothing, gives result.success false and
 // its reason in result.message (and the report).
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
-                                         const std::string& scene_path, unsigned seed);
+                                         const std::string& scene_path, unsigned seed,
+                                         const ProgressCallback& progress = {});
 // The same without a scene on a cloud already read (`name` for the report; normals oriented,
 // e.g. by datasets/normals/normal_estimation.h, and `normals` saying how): detect, then the
 // solid. The end-to-end path of a raw scan.
 CloudReconstruction ReconstructCloud(PointCloud cloud, const std::string& name,
-                                     const std::string& normals, unsigned seed);
+                                     const std::string& normals, unsigned seed,
+                                     const ProgressCallback& progress = {});
 
 }  // namespace implicitfit

@@ -145,6 +145,22 @@ inline int SkeletonFeatureCount(const ModelNode& node) {
   return (node.num_parameters - 3 * node.count - 1) / ColemanFeatures::kPerFeature;
 }
 
+// What the writer of a model states about the whole solid, beside the tree (optional top-level
+// fields of the model file, docs/model-file.md; `reconstruct` writes them, fit/reconstruct/
+// solid_verification.h proves them):
+//   bounds        a box holding every x with f(x) <= 0 (f > 0 outside it); `mesh` grids it by
+//                 default instead of a box guessed from the primitives' parameters
+//   verification  whether the solid passed the writer's checks, and the reason when not
+// They describe the parameters as written: a tool that changes the parameters (a refit) does
+// not carry them over.
+struct ModelClaims {
+  bool has_bounds = false;
+  Eigen::Vector3d bounds_min = Eigen::Vector3d::Zero(), bounds_max = Eigen::Vector3d::Zero();
+  bool has_verification = false;
+  bool verified = false;
+  std::string verification_reason;  // empty when verified
+};
+
 class Model {
  public:
   // Builders. Parameters are copied into the flat vector; the new node's index is returned.
@@ -205,6 +221,8 @@ class Model {
   std::vector<ModelNode>& mutable_nodes() { return nodes_; }
   const std::vector<double>& parameters() const { return parameters_; }
   std::vector<double>& mutable_parameters() { return parameters_; }
+  const ModelClaims& claims() const { return claims_; }
+  ModelClaims& mutable_claims() { return claims_; }
 
   // f(x) for the given parameter vector (same layout as parameters()), any scalar type.
   template <typename T>
@@ -230,6 +248,7 @@ class Model {
   std::vector<ModelNode> nodes_;
   std::vector<double> parameters_;
   int root_ = -1;
+  ModelClaims claims_;
 };
 
 template <typename T>

@@ -89,7 +89,12 @@ Vec RootOnEdge(const Model& model, const Vec& a, const Vec& b, double fa, double
 }  // namespace
 
 void DefaultMeshBox(const Model& model, Vec* box_min, Vec* box_max) {
-  SamplingBox(model, box_min, box_max);
+  if (model.claims().has_bounds) {  // the writer's box of {f <= 0} (a verified solid's)
+    *box_min = model.claims().bounds_min;
+    *box_max = model.claims().bounds_max;
+  } else {
+    SamplingBox(model, box_min, box_max);
+  }
   const Vec margin = 0.1 * (*box_max - *box_min);
   *box_min -= margin;
   *box_max += margin;

@@ -1,7 +1,9 @@
 // A triangle mesh of a model's zero set {x : f(x) = 0}, for any model tree (it only calls
 // Model::Value and Model::Gradient, so every node kind meshes).
-//   1. f is sampled on a regular grid of cell h over a box (default: SamplingBox of
-//      datasets/generators/model_sampler.h enlarged by 10% of its size and two cells on every side);
+//   1. f is sampled on a regular grid of cell h over a box (default: the model's bounds when its
+//      file states them (a verified solid, model/model.h ModelClaims), else SamplingBox of
+//      datasets/generators/model_sampler.h; enlarged by 10% of its size and two cells on every
+//      side);
 //   2. VTK's vtkFlyingEdges3D contours the grid at 0: one vertex per grid edge whose ends
 //      differ in sign, triangles from the marching-cubes case table (shared vertices, so a
 //      surface that closes inside the box gives a closed, edge-manifold mesh);
@@ -63,7 +65,8 @@ struct MeshResult {
 // Throws std::invalid_argument for an invalid box or cell (or a grid above max_grid_points).
 MeshResult MeshModel(const Model& model, const MeshOptions& options = {});
 
-// The default box of `mesh`: SamplingBox enlarged by 10% of its size on every side.
+// The default box of `mesh`: the model's bounds (ModelClaims) or else SamplingBox, enlarged by
+// 10% of its size on every side.
 void DefaultMeshBox(const Model& model, Eigen::Vector3d* box_min, Eigen::Vector3d* box_max);
 
 // Writes the mesh as binary little-endian PLY: vertex x y z nx ny nz (double), face

@@ -6,17 +6,9 @@
 #include <mutex>
 #include <vector>
 
+#include "fit/common/glpk_mutex.h"
+
 namespace implicitfit {
-namespace {
-
-// GLPK keeps its environment per thread only when built with thread-local storage; one lock
-// makes the solver safe whichever way the library was built (the LPs take well under 1 ms).
-std::mutex& GlpkMutex() {
-  static std::mutex m;
-  return m;
-}
-
-}  // namespace
 
 ChebyshevLpSolution SolveChebyshevLp(const Eigen::VectorXd& d, const Eigen::MatrixXd& g,
                                      double radius) {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <cstdio>
-#include <cstdlib>
 
 namespace implicitfit {
 
@@ -91,17 +89,6 @@ int DropRedundantPrimitives(const std::vector<Vec>& points, const std::vector<Mo
         }
       }
       near += on_other;
-    }
-    if (std::getenv("IMPLICITFIT_DEBUG_CSG")) {  // DEBUG
-      int n2 = 0, n4 = 0;
-      for (size_t i : own[k]) {
-        double best = 1e300;
-        for (int j : larger) best = std::min(best, Distance(primitives[j], points[i]) / band[j]);
-        n2 += best < 2; n4 += best < 4;
-      }
-      std::fprintf(stderr, "prim %d: %zu points, within band %.2f, 2 bands %.2f, 4 bands %.2f\n", k,
-                   own[k].size(), double(near) / own[k].size(), double(n2) / own[k].size(),
-                   double(n4) / own[k].size());
     }
     if (near >= share * own[k].size()) {
       (*active)[k] = false;

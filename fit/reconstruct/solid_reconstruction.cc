@@ -3,10 +3,9 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <unordered_map>
@@ -19,6 +18,7 @@
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/reconstruct/solid_bounding.h"
 #include "fit/reconstruct/term_bounds.h"
+#include "fit/reconstruct/unsupported_repair.h"
 #include "fit/tree/tree_covariance.h"
 #include "model/median.h"
 
@@ -70,6 +70,12 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   const double R = options.max_fillet * diag;
 
   // 1. Assignment.
+  std::unique_ptr<ProgressStage> stage;  // one stage at a time: the last ends before the next
+  auto next_stage = [&](const char* name, const std::string& detail) {
+    stage.reset();
+    stage = std::make_unique<ProgressStage>(options.progress, name, detail);
+  };
+  next_stage("orientation", std::to_string(N) + " points, " + std::to_string(K) + " primitives");
   std::vector<Model> prim(K);
   std::vector<double> tau(K);
   for (int k = 0; k < K; ++k) {
@@ -108,6 +114,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
 
   // 3. Inside/outside samples and the separation, with separators and closures when needed
   //    (fit/reconstruct/solid_bounding.h).
+  next_stage("separation", "");
   std::mt19937_64 rng(options.seed);
   std::vector<size_t> assigned_points;
   for (size_t i = 0; i < N; ++i)
@@ -120,8 +127,10 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   // Literals: the primitives, then separators and closures (fixed planes).
   std::vector<Model> lit = prim;
   std::vector<std::string> names;
-  for (int k = 0; k < K; ++k)
+  for (int k = 0; k < K; ++k) {
     names.push_back(primitives[k].name.empty() ? "p" + std::to_string(k) : primitives[k].name);
+    lit[k].mutable_nodes()[lit[k].root()].name = names[k];  // the expression's name in the model
+  }
   std::vector<int> literal_kind(K, 0);  // 0 primitive, 1 separator, 2 closure
   std::vector<PlaneLiteral> literal_plane(K);
   // Primitives without points (redundant or unused) are no literals: their sign bits stay 0.
@@ -229,12 +238,13 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     for (int kind : {2, 3, 1, 0})
       for (int k = 0; k < static_cast<int>(lit.size()); ++k)
         if (literal_kind[k] == kind) so.drop_order.push_back(k);
-    // Every term stays bounded (fit/reconstruct/term_bounds.h); the literals only grow, so the
-    // answers for a mask stay valid.
+    // Every term stays bounded within the verifier's limit box (fit/reconstruct/term_bounds.h);
+    // the literals only grow, so the answers for a mask stay valid.
     so.bounded = [&](std::uint64_t mask) {
       const auto found = bounded_cache.find(mask);
       if (found != bounded_cache.end()) return found->second;
-      return bounded_cache[mask] = TermIsBounded(lit, mask);
+      const Vec reach = Vec::Constant(options.verification.max_reach * diag);
+      return bounded_cache[mask] = TermIsBounded(lit, mask, lo - reach, hi + reach);
     };
     return SeparateCells(samples, static_cast<int>(lit.size()), so);
   };
@@ -409,24 +419,6 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
       out.expression = "(" + out.expression + ")" + faces_text;
     }
   }
-  if (std::getenv("IMPLICITFIT_DEBUG_CSG")) {  // DEBUG
-    for (const CsgTerm& term : sep.terms) {
-      int covered = 0, unique = 0;
-      for (size_t s = 0; s < offset_samples; ++s) {
-        if (!sin[s]) continue;
-        auto covers = [&](const CsgTerm& u) {
-          return (signs[s] & u.inside) == u.inside && !(signs[s] & u.outside);
-        };
-        if (!covers(term)) continue;
-        ++covered;
-        int others = 0;
-        for (const CsgTerm& u : sep.terms) others += covers(u);
-        unique += others == 1;
-      }
-      std::fprintf(stderr, "term %s: %d inside samples, %d only here\n",
-                   CsgExpressionText({term}, names).c_str(), covered, unique);
-    }
-  }
   for (int k = K; k < static_cast<int>(lit.size()); ++k) {
     bool used = (root_closures >> k & 1) != 0;
     for (const CsgTerm& term : sep.terms) used = used || ((term.inside | term.outside) >> k & 1);
@@ -447,6 +439,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   for (ModelNode& node : m.mutable_nodes())
     if (IsOperator(node.type)) node.fixed = {"delta", "epsilon"};
   // 4. Blends from the transition points.
+  next_stage("blends", out.expression);
   const double h = 1e-6 * diag;
   const double tau_all = *std::max_element(tau.begin(), tau.end());
   std::vector<int> operators;
@@ -519,6 +512,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   }
 
   // 5. Joint refinement on the points near the initial solid.
+  next_stage("tree fit", std::to_string(smooth.size()) + " blends");
   std::vector<Vec> near_points, near_normals;
   std::vector<bool> near_on_face;
   for (size_t i = 0; i < N; ++i) {
@@ -553,8 +547,6 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   }
   out.inliers = static_cast<int>(inlier_points.size());
   out.normal_agreement = out.inliers ? static_cast<double>(agree) / out.inliers : 0.0;
-  out.bounded = true;
-  for (const Vec& x : shell) out.bounded = out.bounded && out.model.Value(x) > 0;
 
   // Deviations of the refitted parameters only (blends and their faces).
   const std::vector<double> sd = BlendStandardDeviations(out.model, inlier_points);
@@ -575,10 +567,24 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
     b.sd_fillet_radius = ImpliedFilletRadius(b.sd_delta, phi);
     out.blends.push_back(b);
   }
-  out.success = out.bounded && out.normal_agreement >= 0.5;
-  out.message = !out.bounded ? "the solid is not bounded (f <= 0 on the box around the cloud)"
-                : out.normal_agreement < 0.5 ? "grad f opposes the normals on most points"
-                                             : "ok";
+  // 6. Verification: bounded (proven), inside/outside, supported pieces.
+  stage.reset();
+  SolidVerificationOptions vo = options.verification;
+  if (!vo.progress) vo.progress = options.progress;
+  out.verification = VerifySolid(out.model, points, normals, vo);
+  if (!out.verification.verified) {  // unsupported pieces alone: removed when that verifies
+    const PieceRepair repair =
+        RepairUnsupportedPieces(&out.model, &out.verification, points, normals, vo);
+    if (repair.verified) {
+      out.expression = "(" + out.expression + ")" + repair.expression;
+      out.filled_cavities = repair.filled;
+      out.removed_pieces = repair.removed;
+    }
+  }
+  ClaimVerification(out.verification, &out.model);
+  out.bounded = out.verification.bounded;
+  out.success = out.verification.verified;
+  out.message = out.success ? "ok" : out.verification.message;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -28,6 +28,15 @@
 //      operators only keeps the primitive fitter's parameters (a point's residual there depends
 //      on that primitive alone, which was fitted to its own points), and a tree without a blend
 //      is not refitted (the fit over a whole tree of 18 primitives took hours on Fit4CAD PC131).
+//   6. verification (fit/reconstruct/solid_verification.h): bounded (proven), inside/outside
+//      agrees with the oriented cloud, every piece and cavity supported by scan points; success
+//      only when it passes. The model's leaves carry the primitives' names (so the expression
+//      maps to the model) and its claims (ModelClaims) the proven bounds and the verdict. When
+//      only unsupported pieces fail it, each is filled (a cavity) or cut away (a solid piece) by
+//      its cell of the arrangement, and the result verified again
+//      (fit/reconstruct/unsupported_repair.h); kept only when it verifies.
+// Progress (options.progress, fit/common/progress.h): stages "orientation" (steps 1-2),
+// "separation" (3), "blends" (4), "tree fit" (5), "verification" (6).
 // The implied fillet radius of a blend: on the bisector of two faces whose outward normals make
 // the angle phi, the blended zero set sits at distance delta / 4 from both faces (a = b:
 // 2a + delta / 2 = 0); a circular fillet of radius rho tangent to both has its arc there when
@@ -38,6 +47,8 @@
 #include <string>
 #include <vector>
 
+#include "fit/common/progress.h"
+#include "fit/reconstruct/solid_verification.h"
 #include "fit/tree/tree_fitter.h"
 #include "model/model.h"
 
@@ -78,6 +89,8 @@ struct SolidReconstructionOptions {
   double closure_margin = 0.02;  // closure box: the assigned points' box + this of the diagonal
   unsigned seed = 1;
   TreeFitOptions tree;
+  SolidVerificationOptions verification;  // step 6
+  ProgressCallback progress;              // stages, fit/common/progress.h (empty: silent)
 };
 
 struct BlendEstimate {
@@ -112,7 +125,7 @@ struct SolidReconstruction {
   std::vector<std::string> sides;  // per primitive: "solid", "hole" or "unused"
   std::vector<int> assigned;       // points per primitive
   int unassigned = 0;
-  bool bounded = false;  // f > 0 on the shell around the cloud
+  bool bounded = false;  // proven by the verification (f > 0 outside verification's bounds)
   double rms = 0.0;      // RMS first-order distance of the fit's inliers
   double sigma = 0.0;
   int inliers = 0;
@@ -126,6 +139,10 @@ struct SolidReconstruction {
   // in the closure box; a mesh of it needs this box, which may exceed the cloud's).
   bool closed = false;
   Eigen::Vector3d closure_box_min = Eigen::Vector3d::Zero(), closure_box_max = Eigen::Vector3d::Zero();
+  SolidVerification verification;  // step 6; success = verification.verified
+  // Unsupported pieces repaired (fit/reconstruct/unsupported_repair.h; the expression shows the
+  // added terms): cavities filled, solid pieces cut away.
+  int filled_cavities = 0, removed_pieces = 0;
   double seconds = 0.0;
   double fit_seconds = 0.0;  // of which the joint refinement (step 5)
   int fit_iterations = 0;

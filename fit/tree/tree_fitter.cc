@@ -30,6 +30,7 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   const auto start = std::chrono::steady_clock::now();
   TreeFitResult result;
   result.model = initial;
+  result.model.mutable_claims() = ModelClaims{};  // the claims were of the initial parameters
   const size_t n_points = points.size();
   result.points = n_points;
   std::string error;

@@ -730,12 +730,63 @@ json WriteNode(const Model& model, int index) {
   return out;
 }
 
+// The optional top-level claims (model/model.h ModelClaims):
+//   "bounds": {"min": [3], "max": [3]} (min <= max), "verification": {"verified": bool[,
+//   "reason": string]} (a reason only when not verified).
+void CheckClaimKeys(const json& object, const std::set<std::string>& allowed,
+                    const std::string& path) {
+  for (auto it = object.begin(); it != object.end(); ++it)
+    if (!allowed.count(it.key())) Fail(path + "." + it.key(), "unknown field");
+}
+
+void ReadClaims(const json& document, ModelClaims* claims) {
+  if (document.contains("bounds")) {
+    const json& b = document.at("bounds");
+    if (!b.is_object()) Fail("bounds", "must be an object");
+    CheckClaimKeys(b, {"min", "max"}, "bounds");
+    const std::vector<double> lo = Vector(b, "min", 3, "bounds");
+    const std::vector<double> hi = Vector(b, "max", 3, "bounds");
+    for (int a = 0; a < 3; ++a)
+      if (!(lo[a] <= hi[a])) Fail("bounds.min", "must be <= bounds.max on every axis");
+    claims->has_bounds = true;
+    claims->bounds_min = Eigen::Vector3d(lo[0], lo[1], lo[2]);
+    claims->bounds_max = Eigen::Vector3d(hi[0], hi[1], hi[2]);
+  }
+  if (document.contains("verification")) {
+    const json& v = document.at("verification");
+    if (!v.is_object()) Fail("verification", "must be an object");
+    CheckClaimKeys(v, {"verified", "reason"}, "verification");
+    if (!v.contains("verified") || !v.at("verified").is_boolean())
+      Fail("verification.verified", "missing or not a boolean");
+    claims->has_verification = true;
+    claims->verified = v.at("verified").get<bool>();
+    if (v.contains("reason")) {
+      if (!v.at("reason").is_string()) Fail("verification.reason", "must be a string");
+      if (claims->verified) Fail("verification.reason", "must be absent when verified");
+      claims->verification_reason = v.at("reason").get<std::string>();
+    }
+  }
+}
+
+void WriteClaims(const ModelClaims& claims, json* out) {
+  if (claims.has_bounds) {
+    const Eigen::Vector3d &lo = claims.bounds_min, &hi = claims.bounds_max;
+    (*out)["bounds"] = {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}};
+  }
+  if (claims.has_verification) {
+    json v = {{"verified", claims.verified}};
+    if (!claims.verified) v["reason"] = claims.verification_reason;
+    (*out)["verification"] = v;
+  }
+}
+
 }  // namespace
 
 Model ModelFromJson(const json& document) {
   if (!document.is_object()) Fail("(document)", "must be a JSON object");
   for (auto it = document.begin(); it != document.end(); ++it)
-    if (it.key() != "format" && it.key() != "version" && it.key() != "root")
+    if (it.key() != "format" && it.key() != "version" && it.key() != "root" &&
+        it.key() != "bounds" && it.key() != "verification")
       Fail(it.key(), "unknown top-level field");
   if (!document.contains("format") || document.at("format") != "implicitfit-model")
     Fail("format", "must be \"implicitfit-model\"");
@@ -748,6 +799,7 @@ Model ModelFromJson(const json& document) {
   Model model;
   const int root = ReadNode(document.at("root"), "root", 1, &model);
   model.SetRoot(root);
+  ReadClaims(document, &model.mutable_claims());
   return model;
 }
 
@@ -756,6 +808,7 @@ json ModelToJson(const Model& model) {
   out["format"] = "implicitfit-model";
   out["version"] = 1;
   out["root"] = WriteNode(model, model.root());
+  WriteClaims(model.claims(), &out);
   return out;
 }
 
