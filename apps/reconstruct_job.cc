@@ -29,6 +29,7 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   j["inliers"] = r.inliers;
   j["normal_sign_agreement"] = r.normal_agreement;
   j["unassigned"] = r.unassigned;
+  j["resigned_normals"] = r.resigned_normals;  // re-signed to their primitive's majority side
   j["seconds"] = r.seconds;
   if (r.verification.points > 0) j["verification"] = r.verification.ToJson();
   j["filled_cavities"] = r.filled_cavities;  // unsupported pieces repaired before verification

@@ -29,10 +29,10 @@
 //   neighbouring face), else |x - p| (x is beyond the sampled part of p's surface). Truth
 //   samples: the points.
 // End to end is apps/reconstruct_job.h's ReconstructCloud, what `reconstruct CLOUD` runs after
-// reading the cloud: detect, orientation, CSG, fit; then the mesh (256 cells on the longest side
-// of the meshing box, --cells: the finest grid of PCL's Poisson at depth 8; the generated
-// solids' box, or the cloud's box enlarged by 10%, and the closure box when the solid has one).
-// When reconstruct closed an open scan, a
+// reading the cloud: detect, orientation, CSG, fit, verification; then the mesh (256 cells on
+// the longest side of the meshing box, --cells: the finest grid of PCL's Poisson at depth 8; the
+// box is `mesh`'s default, the verified solid's proven bounds enlarged by 10%; an unverified
+// solid gets no row figures). When reconstruct closed an open scan, a
 // second row judges the mesh without its faces on closure planes (fit/reconstruct/
 // solid_bounding.h: not measured). Figures: Chamfer distance (mean of the two directed mean
 // distances: mesh -> truth at 50 000 area-uniform mesh points, truth -> mesh by exact
@@ -301,15 +301,10 @@ void RunImplicitfit(const SolidCloud& c, bool labelled, unsigned seed, const Fig
       r = implicitfit::ReconstructSolid(c.points, c.normals_of_points, c.labelled, ro);
     }
     if (r.success) {
+      // `mesh`'s default box (the verified solid's proven bounds, enlarged by 10%), the cell
+      // of --cells on its longest side: what `reconstruct --mesh` and `mesh MODEL.json` mesh.
       implicitfit::MeshOptions mo;
-      mo.has_box = true;
-      mo.box_min = c.box_min;
-      mo.box_max = c.box_max;
-      if (r.closed) {  // the solid lies in the closure box, which may exceed the cloud's
-        const Vec margin = 0.02 * (r.closure_box_max - r.closure_box_min);
-        mo.box_min = mo.box_min.cwiseMin(r.closure_box_min - margin);
-        mo.box_max = mo.box_max.cwiseMax(r.closure_box_max + margin);
-      }
+      implicitfit::DefaultMeshBox(r.model, &mo.box_min, &mo.box_max);
       mo.cell = (mo.box_max - mo.box_min).maxCoeff() / g_cells;
       const TriangleMesh ours = implicitfit::MeshModel(r.model, mo).mesh;
       const double seconds = Seconds(t0);

@@ -46,9 +46,10 @@ double ImpliedFilletRadius(double delta, double crease_angle_rad) {
 }
 
 SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
-                                     const std::vector<Vec>& normals,
+                                     const std::vector<Vec>& input_normals,
                                      const std::vector<SolidPrimitive>& primitives,
                                      const SolidReconstructionOptions& options) {
+  std::vector<Vec> normals = input_normals;  // re-signed per primitive in step 2
   const auto start = std::chrono::steady_clock::now();
   SolidReconstruction out;
   const int K = static_cast<int>(primitives.size());
@@ -98,7 +99,22 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   const std::vector<double>& side_vote = assignment.side_vote;
   out.assigned = assignment.assigned;
   out.unassigned = assignment.unassigned;
-  // 2. Orientation: planes flipped to their material side; other kinds keep f and say hole.
+  // 2. Orientation. A primitive's points lie on one smooth sheet, so their outward normals all
+  //    face one side of it: where most of them (at least options.resign_majority) agree, the
+  //    others' signs are corrected to that side (the propagation of the normals' orientation
+  //    can carry a wrong sign into part of a small bore through its rim).
+  for (size_t i = 0; i < N; ++i) {
+    const int k = label[i];
+    if (k < 0 || out.assigned[k] == 0) continue;
+    const double majority = std::abs(side_vote[k]) / out.assigned[k];  // (agree - disagree) / n
+    if (0.5 * (1.0 + majority) < options.resign_majority) continue;
+    const double vote = normals[i].dot(prim[k].Gradient(points[i]));
+    if ((vote > 0) != (side_vote[k] >= 0)) {
+      normals[i] = -normals[i];
+      ++out.resigned_normals;
+    }
+  }
+  //    Planes are flipped to their material side; other kinds keep f and say hole.
   out.sides.assign(K, "unused");
   for (int k = 0; k < K; ++k) {
     if (out.assigned[k] == 0) continue;
@@ -352,9 +368,6 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
       box_lo = box_lo.cwiseMin(x);
       box_hi = box_hi.cwiseMax(x);
     }
-    out.closed = true;
-    out.closure_box_min = box_lo;
-    out.closure_box_max = box_hi;
     shell = make_shell(box_lo - 0.1 * (box_hi - box_lo), box_hi + 0.1 * (box_hi - box_lo));
     signs.resize(offset_samples + shell.size());
     for (size_t s = offset_samples; s < signs.size(); ++s) {

@@ -3,7 +3,11 @@
 //      rms_k, 1e-3 diag), |cos(grad f_k, n)| >= 0.8; the smallest distance in units of tau_k);
 //   2. orientation: a primitive is material-inside when most of its points' normals agree in
 //      sign with grad f_k, a hole otherwise (a bore: the cylinder is subtracted); planes are
-//      flipped so that f < 0 is their material side;
+//      flipped so that f < 0 is their material side. When at least resign_majority of a
+//      primitive's points agree, the others' normals are re-signed to that side (one smooth
+//      sheet has one outward side; a points-only L-bracket's bore of radius 0.18 through a
+//      0.3 wall had 83 of its 283 estimated normals inverted over its lower half), and every
+//      later step, the verification included, uses the re-signed normals;
 //   3. the Boolean expression: samples p -+ t n (t = 1% of the diagonal, shortened to half the
 //      distance to the next surface along the normal: fit/reconstruct/offset_samples.h) of the assigned
 //      points are inside / outside, points on a box 10% larger than the cloud's are outside;
@@ -87,6 +91,9 @@ struct SolidReconstructionOptions {
   int min_conflict_samples = 20;
   double min_conflict_fraction = 0.005;
   double closure_margin = 0.02;  // closure box: the assigned points' box + this of the diagonal
+  // Step 2: a primitive's points whose normals face the minority side are re-signed when at
+  // least this share of them face the majority side.
+  double resign_majority = 0.6;
   unsigned seed = 1;
   TreeFitOptions tree;
   SolidVerificationOptions verification;  // step 6
@@ -125,6 +132,7 @@ struct SolidReconstruction {
   std::vector<std::string> sides;  // per primitive: "solid", "hole" or "unused"
   std::vector<int> assigned;       // points per primitive
   int unassigned = 0;
+  int resigned_normals = 0;  // step 2: normals re-signed to their primitive's majority side
   bool bounded = false;  // proven by the verification (f > 0 outside verification's bounds)
   double rms = 0.0;      // RMS first-order distance of the fit's inliers
   double sigma = 0.0;
@@ -135,10 +143,6 @@ struct SolidReconstruction {
   // closures close the solid where the scan has no data (their faces are not measured).
   std::vector<AddedPlane> separators, closures;
   std::vector<AddedCylinder> separator_cylinders;
-  // When closures were added: the axis-aligned box of the closure box's corners (the solid lies
-  // in the closure box; a mesh of it needs this box, which may exceed the cloud's).
-  bool closed = false;
-  Eigen::Vector3d closure_box_min = Eigen::Vector3d::Zero(), closure_box_max = Eigen::Vector3d::Zero();
   SolidVerification verification;  // step 6; success = verification.verified
   // Unsupported pieces repaired (fit/reconstruct/unsupported_repair.h; the expression shows the
   // added terms): cavities filled, solid pieces cut away.
