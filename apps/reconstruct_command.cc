@@ -9,10 +9,16 @@
 // "reason"}} (exit 1 still). The mesh is `mesh MODEL.json`'s default for the written model (its
 // proven bounds), so the two agree. Progress on stderr per stage, one summary line at the end;
 // --quiet keeps only the failure's summary.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "apps/command.h"
 #include "apps/progress_printer.h"
@@ -44,6 +50,45 @@ std::string Details(const SolidReconstruction& r, size_t primitives) {
   return d + rms;
 }
 
+// Before any work: every output's folder exists and is writable, and no output is the cloud
+// (a missing folder used to fail only after the whole reconstruction).
+void CheckOutputs(const ReconstructArgs& a) {
+  namespace fs = std::filesystem;
+  for (const std::string* path : {&a.out, &a.mesh, &a.report, &a.view}) {
+    if (path->empty()) continue;
+    std::error_code ec;
+    if (fs::equivalent(*path, a.cloud, ec)) throw InputError(*path + ": is the input cloud");
+    if (fs::is_directory(*path, ec)) throw InputError(*path + ": is a directory");
+    fs::path folder = fs::path(*path).parent_path();
+    if (folder.empty()) folder = ".";
+    if (!fs::is_directory(folder, ec))
+      throw InputError(*path + ": no such folder (" + folder.string() + ")");
+    if (::access(folder.c_str(), W_OK) != 0)
+      throw InputError(*path + ": folder not writable (" + folder.string() + ")");
+  }
+}
+
+// The outputs are written together or not at all: each to a temporary in its own folder
+// first, then all renamed into place; a failure removes the temporaries (and the outputs
+// already renamed) so that no file is left behind by a failed run.
+using OutputWriter = std::pair<std::string, std::function<void(const std::string&)>>;
+void WriteTogether(const std::vector<OutputWriter>& outputs) {
+  const std::string suffix = ".partial." + std::to_string(::getpid());
+  size_t renamed = 0;
+  try {
+    for (const auto& [path, write] : outputs) write(path + suffix);
+    for (; renamed < outputs.size(); ++renamed) {
+      const std::string& path = outputs[renamed].first;
+      if (std::rename((path + suffix).c_str(), path.c_str()) != 0)
+        throw InputError(path + ": cannot write");
+    }
+  } catch (...) {
+    for (size_t k = 0; k < outputs.size(); ++k)
+      std::remove((outputs[k].first + (k < renamed ? "" : suffix)).c_str());
+    throw;
+  }
+}
+
 }  // namespace
 
 CommandAction AddReconstructCommand(CLI::App& app) {
@@ -64,6 +109,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
   return [a]() {
     if (!a->mesh.empty() && (a->mesh.size() < 4 || a->mesh.substr(a->mesh.size() - 4) != ".ply"))
       throw InputError(a->mesh + ": unsupported mesh format (use .ply)");
+    CheckOutputs(*a);
     const auto start = std::chrono::steady_clock::now();
     const ProgressCallback progress = StderrProgress("reconstruct", a->quiet);
     CloudReconstruction job = ReconstructCloudFile(a->cloud, a->scene, a->seed, progress);
@@ -90,11 +136,17 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       mesh = MeshModel(r.model, mo).mesh;
       stage.End(std::to_string(mesh.triangles.size()) + " triangles");
     }
-    if (!a->report.empty()) WriteFileAtomically(a->report, report.dump(2) + "\n");
+    std::vector<OutputWriter> outputs;
     if (write) {
-      WriteModelFile(r.model, a->out);
-      if (!a->mesh.empty()) WriteMeshPlyFile(mesh, a->mesh);
+      outputs.push_back({a->out, [&](const std::string& p) { WriteModelFile(r.model, p); }});
+      if (!a->mesh.empty())
+        outputs.push_back({a->mesh, [&](const std::string& p) { WriteMeshPlyFile(mesh, p); }});
     }
+    if (!a->report.empty())  // also when verification failed: the reasons
+      outputs.push_back({a->report, [&](const std::string& p) {
+                           WriteFileAtomically(p, report.dump(2) + "\n");
+                         }});
+    WriteTogether(outputs);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.success) {

@@ -176,4 +176,27 @@ TEST_F(VerifyCommand, MeshOfTheWrittenModelReproducesReconstructMesh) {
   EXPECT_EQ(Slurp(dir_ + "/again.ply"), Slurp(dir_ + "/m.ply"));
 }
 
+// Output paths are checked before any work: a missing folder for any output exits 2 at once
+// (the cloud is never read: it does not even exist here), naming the output, and writes
+// nothing; a run whose mesh folder is missing leaves no model behind either.
+TEST_F(VerifyCommand, ReconstructChecksOutputsBeforeWorkAndLeavesNothingBehind) {
+  auto r = RunCommand(kCli + " reconstruct " + dir_ + "/absent.xyz --out " + dir_ +
+                      "/no_such_folder/m.json --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("no_such_folder/m.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no such folder"), std::string::npos) << r.err;
+  r = RunCommand(kCli + " reconstruct " + dir_ + "/cloud.xyz --out " + dir_ + "/m.json --mesh " +
+                 dir_ + "/no_such_folder/m.ply --report " + dir_ + "/r.json --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("no_such_folder/m.ply"), std::string::npos) << r.err;
+  EXPECT_FALSE(FileExists(dir_ + "/m.json"));
+  EXPECT_FALSE(FileExists(dir_ + "/r.json"));
+  // the same cloud into an existing folder works (the check refuses only what must fail)
+  r = RunCommand(kCli + " reconstruct " + dir_ + "/cloud.xyz --out " + dir_ + "/m.json --mesh " +
+                 dir_ + "/m.ply --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(FileExists(dir_ + "/m.json"));
+  EXPECT_TRUE(FileExists(dir_ + "/m.ply"));
+}
+
 }  // namespace
