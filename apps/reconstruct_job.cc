@@ -34,6 +34,7 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   if (r.verification.points > 0) j["verification"] = r.verification.ToJson();
   j["filled_cavities"] = r.filled_cavities;  // unsupported pieces repaired before verification
   j["removed_pieces"] = r.removed_pieces;
+  j["bridged_separators"] = r.bridged_separators;
   j["primitives"] = nlohmann::json::array();
   for (size_t k = 0; k < primitives.size() && k < r.sides.size(); ++k)
     j["primitives"].push_back(

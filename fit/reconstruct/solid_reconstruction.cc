@@ -16,6 +16,7 @@
 #include "fit/reconstruct/offset_samples.h"
 #include "fit/reconstruct/point_assignment.h"
 #include "fit/primitive/primitive_fitter.h"
+#include "fit/reconstruct/separator_bridging.h"
 #include "fit/reconstruct/solid_bounding.h"
 #include "fit/reconstruct/term_bounds.h"
 #include "fit/reconstruct/unsupported_repair.h"
@@ -593,6 +594,20 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
       out.filled_cavities = repair.filled;
       out.removed_pieces = repair.removed;
     }
+  }
+  if (out.verification.verified && out.verification.components.solids > 1) {
+    // a separator in an unconstrained gap may cut the solid apart (fit/reconstruct/
+    // separator_bridging.h)
+    SolidVerificationOptions quiet = vo;
+    quiet.progress = {};
+    ProgressStage bridge(options.progress, "bridging",
+                         std::to_string(out.verification.components.solids) + " solid pieces");
+    const SeparatorBridging b =
+        BridgeSeparatedPieces(&out.model, &out.verification, points, normals, quiet);
+    for (const auto& [from, to] : b.replaced)
+      out.expression = RenameInExpression(out.expression, from, to);
+    out.bridged_separators = b.Text();
+    bridge.End(b.replaced.empty() ? "none" : out.bridged_separators);
   }
   ClaimVerification(out.verification, &out.model);
   out.bounded = out.verification.bounded;

@@ -147,6 +147,9 @@ struct SolidReconstruction {
   // Unsupported pieces repaired (fit/reconstruct/unsupported_repair.h; the expression shows the
   // added terms): cavities filled, solid pieces cut away.
   int filled_cavities = 0, removed_pieces = 0;
+  // Separators replaced by measured planes to join pieces (fit/reconstruct/separator_bridging.h),
+  // e.g. "separator2 -> p0"; empty when none.
+  std::string bridged_separators;
   double seconds = 0.0;
   double fit_seconds = 0.0;  // of which the joint refinement (step 5)
   int fit_iterations = 0;
