@@ -6,6 +6,7 @@
 
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
+#include "datasets/io/json_file.h"
 #include "datasets/io/text_file.h"
 #include "model/file/model_json.h"
 
@@ -101,15 +102,7 @@ Scene SceneFromJson(const json& d) {
 
 Scene ReadSceneFile(const std::string& path) {
   const std::string text = ReadTextFile(path);
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    const size_t at = what.find("] ");
-    throw FileError(path,
-                    "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
-  }
+  const json document = ParseJsonDocument(text, path);
   try {
     return SceneFromJson(document);
   } catch (const ModelFormatError& e) {

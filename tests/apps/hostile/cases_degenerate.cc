@@ -1,0 +1,106 @@
+// Degenerate data that must give a negative result (exit 1 with the reason), never confident
+// nonsense: collinear and coplanar points, too few distinct points, duplicates by the tens of
+// thousands (in near-linear time), zero inliers.
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "apps/hostile/hostile_case.h"
+
+namespace hostile {
+namespace {
+
+std::string Line(int n) {
+  std::ostringstream s;
+  for (int i = 0; i < n; ++i) s << 0.01 * i << ' ' << 0.02 * i << ' ' << -0.01 * i << '\n';
+  return s.str();
+}
+
+std::string Circle(int n) {
+  std::ostringstream s;
+  s.precision(12);
+  for (int i = 0; i < n; ++i)
+    s << std::cos(2 * M_PI * i / n) << ' ' << std::sin(2 * M_PI * i / n) << " 0\n";
+  return s.str();
+}
+
+std::string Copies(int n, const std::string& point) {
+  std::string s;
+  s.reserve(n * (point.size() + 1));
+  for (int i = 0; i < n; ++i) s += point + "\n";
+  return s;
+}
+
+Case Degenerate(const std::string& name, const std::string& cloud, const std::string& args,
+                int exit_code, const std::string& mention, const std::string& defect,
+                double seconds = 15) {
+  Case c;
+  c.family = "degenerate";
+  c.name = name;
+  c.setup = [cloud](const std::string& dir) { Write(dir + "/d.xyz", cloud); };
+  c.args = args;
+  c.exit_code = exit_code;
+  if (!mention.empty()) c.mention = {mention};
+  c.outputs = {"m.json", "r.json", "o.json"};
+  c.seconds = seconds;
+  c.defect = defect;
+  c.sanitized = true;
+  return c;
+}
+
+}  // namespace
+
+Case ZeroInliers();
+
+std::vector<Case> DegenerateCases() {
+  std::vector<Case> cases = {
+      Degenerate("collinear_plane", Line(200), "fit d.xyz --model plane --out m.json", 1,
+                 "collinear", "collinear points give a plane with standard deviation 0"),
+      Degenerate("collinear_plane_least_squares", Line(200),
+                 "fit d.xyz --model plane --estimator least-squares --out m.json", 1, "collinear",
+                 "collinear points give a plane with standard deviation 0"),
+      Degenerate("coplanar_sphere", Circle(200), "fit d.xyz --model sphere --out m.json", 1,
+                 "coplanar", ""),
+      Degenerate("coplanar_cylinder", Circle(200), "fit d.xyz --model cylinder --out m.json", 1,
+                 "coplanar", ""),
+      Degenerate("two_distinct_points", Copies(50, "0 0 0") + Copies(50, "1 1 1"),
+                 "fit d.xyz --model plane --out m.json", 1, "distinct", ""),
+      Degenerate("identical_80000", Copies(80000, "1 2 3"),
+                 "fit d.xyz --model plane --out m.json", 1, "distinct",
+                 "80 000 identical points take 22 s to refuse (quadratic normal estimation)",
+                 8),
+      Degenerate("identical_200000_detect", Copies(200000, "0.5 0.5 0.5"),
+                 "detect d.xyz --out o.json", 1, "",
+                 "200 000 identical points take over 60 s", 15),
+      Degenerate("identical_80000_sphere", Copies(80000, "1 2 3"),
+                 "fit d.xyz --model sphere --out m.json", 1, "distinct", "", 8),
+  };
+  cases.push_back(ZeroInliers());
+  return cases;
+}
+
+// Exact data: sigma = 0; every point counted as an outlier made "inliers 0" with exit 0. Now a
+// fit claims success only with inliers, and exact points are inliers.
+Case ZeroInliers() {
+  std::ostringstream flat;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) flat << i / 19.0 << ' ' << j / 19.0 << " 0 0 0 1\n";
+  Case c = Degenerate("partition_exact_data_inliers", flat.str(),
+                      "fit d.xyz --model partition --grid 2x1x1 --out m.json --report r.json", 0,
+                      "", "a partition fit with 0 inliers exits 0");
+  c.must_exist = {"m.json", "r.json"};
+  c.check = [](const std::string& dir, const RunOutcome&) {
+    std::vector<std::string> p;
+    std::ifstream in(dir + "/r.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string r = text.str();
+    if (r.find("\"success\": true") != std::string::npos &&
+        r.find("\"inliers\": 0,") != std::string::npos)
+      p.push_back("the report says success with 0 inliers");
+    return p;
+  };
+  return c;
+}
+
+}  // namespace hostile
