@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   actions["reconstruct"] = AddReconstructCommand(app);
   actions["detect"] = AddDetectCommand(app);
   actions["design"] = AddDesignCommand(app);
+  actions["view"] = AddViewCommand(app);
 
   MakeNumberOptionsStrict(app);
   try {

@@ -23,8 +23,26 @@ std::set<const CLI::Option*>& Marked(bool output) {
   return output ? outputs : inputs;
 }
 
-const std::set<std::string> kOutputNames = {"--out", "--report", "--labels", "--ply", "--mesh"};
-const std::set<std::string> kInputNames = {"--init", "--scene", "--manifest"};
+// Per command: the options naming files it writes, and those naming files it reads besides its
+// positional arguments (an option's name alone does not tell: `sample --view` is a direction,
+// `view --labels` an input, `detect --labels` an output).
+struct FileOptions {
+  std::set<std::string> outputs, inputs;
+};
+const std::map<std::string, FileOptions> kFileOptions = {
+    {"fit", {{"--out", "--report", "--view", "--ply"}, {"--init"}}},
+    {"detect", {{"--out", "--labels", "--ply", "--report", "--view"}, {}}},
+    {"reconstruct", {{"--out", "--mesh", "--report", "--view"}, {"--scene"}}},
+    {"mesh", {{"--out"}, {}}},
+    {"sample", {{"--out"}, {}}},
+    {"design", {{"--out"}, {}}},
+    {"view", {{"--out", "--png"}, {"--labels"}}},
+    {"eval", {{}, {}}},
+    {"check", {{}, {}}},
+    {"batch", {{}, {"--manifest"}}},
+};
+// A command not in the table (a new one): these.
+const FileOptions kDefaultFileOptions = {{"--out", "--report"}, {}};
 
 std::string FolderOf(const std::string& path) {
   const size_t slash = path.find_last_of('/');
@@ -46,12 +64,15 @@ CLI::Option* InputFileOption(CLI::Option* option) {
 
 CommandFiles FilesOfCommand(const CLI::App& command) {
   CommandFiles files;
+  const auto known = kFileOptions.find(command.get_name());
+  const FileOptions& names = known == kFileOptions.end() ? kDefaultFileOptions : known->second;
   for (const CLI::Option* option : command.get_options()) {
     if (option->count() == 0) continue;
     const std::string name = option->get_name();
-    const bool output = Marked(true).count(option) || kOutputNames.count(name);
-    const bool input =
-        !output && (Marked(false).count(option) || kInputNames.count(name) || !option->nonpositional());
+    const bool marked_input = Marked(false).count(option) > 0;
+    const bool output = !marked_input && (Marked(true).count(option) || names.outputs.count(name));
+    const bool input = !output && (marked_input || names.inputs.count(name) ||
+                                   !option->nonpositional());
     if (!output && !input) continue;
     for (const std::string& value : option->results())
       (output ? files.outputs : files.inputs).push_back(value);
@@ -118,7 +139,10 @@ void GuardOutputs(const CommandFiles& files) {
   for (const std::string& folder : folders) RemoveStaleTemporaries(folder);
 }
 
-bool IsIncrementalCommand(const std::string& name) { return name == "batch"; }
+bool GuardsItsOwnFiles(const std::string& name) { return name == "batch"; }
+
+// view --png screenshots the page --out has just written: its outputs cannot wait for the end.
+bool WritesAsItGoes(const std::string& name) { return name == "batch" || name == "view"; }
 
 void ReopenClosedStandardDescriptors() {
   for (int fd = 0; fd <= 2; ++fd) {
@@ -139,10 +163,11 @@ struct CommandRun::State {
 
 CommandRun::CommandRun(const std::string& name, const CLI::App& command)
     : state_(std::make_unique<State>()) {
-  if (IsIncrementalCommand(name)) return;
+  if (GuardsItsOwnFiles(name)) return;
   const CommandFiles files = FilesOfCommand(command);
-  state_->transaction = std::make_unique<OutputTransaction>();
+  if (!WritesAsItGoes(name)) state_->transaction = std::make_unique<OutputTransaction>();
   GuardOutputs(files);
+  if (!state_->transaction) return;
   for (const std::string& path : files.outputs)
     if (path == "-") {
       std::fflush(stdout);

@@ -7,14 +7,17 @@
 //   - an output equal to an input, or to another output (same inode, or the same normalised
 //     path), refused;
 //   - temporaries that killed runs left in the outputs' folders removed.
-// Outputs: the options named --out, --report, --labels, --ply, --mesh, and any option a command
-// marks with OutputFileOption. Inputs: every positional argument, --init, --scene, --manifest
-// and any option marked with InputFileOption.
+// Outputs and inputs: a table per command in output_guard.cc (fit: --out --report --view --ply,
+// input --init; detect: --out --labels --ply --report --view; reconstruct: --out --mesh --report
+// --view, input --scene; view: --out --png, input --labels; ...), every positional argument an
+// input; a command not in the table: --out and --report. A command may also mark an option with
+// OutputFileOption or InputFileOption (the mark wins).
 // CommandRun then makes the run all or nothing (datasets/io/atomic_file.h OutputTransaction:
 // outputs are renamed into place only when the command returns; an exception leaves none) and
 // treats a failed write to standard output (full disk, closed descriptor) as an error. Commands
-// that write as they go (batch: its outputs must survive a kill, --resume continues) are
-// listed in IsIncrementalCommand and guard their own files.
+// that write as they go get the checks without the transaction (view: --png screenshots the
+// page just written); batch (its outputs must survive a kill, --resume continues) guards its
+// own files (apps/batch/batch_command.cc).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -39,15 +42,16 @@ void GuardOutputs(const CommandFiles& files);
 void RefuseOverlaps(const std::vector<std::string>& inputs,
                     const std::vector<std::string>& outputs);
 
-bool IsIncrementalCommand(const std::string& name);
+bool GuardsItsOwnFiles(const std::string& name);
+bool WritesAsItGoes(const std::string& name);
 
 // Standard descriptors 0, 1, 2 that the caller closed are reopened on /dev/null (read-only for
 // stdout, so that writes fail): a file the command opens can never become its stdout.
 void ReopenClosedStandardDescriptors();
 
 // One command run: construct after parsing (guards the files, opens the transaction unless the
-// command is incremental), call Finish(exit code) after the action returned; destroyed without
-// Finish (an exception), it discards every output.
+// command writes as it goes), call Finish(exit code) after the action returned; destroyed
+// without Finish (an exception), it discards every output.
 class CommandRun {
  public:
   CommandRun(const std::string& name, const CLI::App& command);

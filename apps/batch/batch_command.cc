@@ -16,11 +16,13 @@
 #include <thread>
 
 #include "apps/batch/batch_inputs.h"
+#include "apps/batch/batch_job.h"
 #ifdef IMPLICITFIT_WITH_MPI
 #include "apps/batch/batch_mpi.h"
 #endif
 #include "apps/batch/batch_progress.h"
 #include "apps/batch/batch_runner.h"
+#include "apps/batch/batch_view.h"
 #include "apps/command.h"
 #include "apps/output_guard.h"
 #include "apps/fit_job.h"
@@ -36,7 +38,7 @@ struct BatchArgs {
   std::vector<std::string> inputs, manifests, fixes;
   std::string kind, out_dir, shard;
   int jobs = 0;
-  bool resume = false;
+  bool resume = false, view = false;
   unsigned seed = 1;
   double threshold = 0.0;
   std::string estimator = "robust";
@@ -134,6 +136,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
                   "Inputs fitted at once (default: the number of cores; at most 256 and the "
                   "number of inputs; under MPI one per rank)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--view", a->view,
+                "Also write DIR/<name>.view.html per result and DIR/index.html linking them");
   cmd->add_flag("--resume", a->resume,
                 "Skip inputs whose model and successful report are already complete");
   cmd->add_option("--shard", a->shard,
@@ -167,11 +171,14 @@ CommandAction AddBatchCommand(CLI::App& app) {
     if (all.empty()) throw InputError("no cloud files in the given inputs");
     std::vector<BatchInput> inputs = all;
     std::string summary_name = "summary.csv";
+    std::string index_name = "index.html";
     if (!a->shard.empty()) {
       const Shard shard = ParseShard(a->shard);
       inputs = SelectShard(all, shard);
       summary_name =
           "summary-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".csv";
+      index_name =
+          "index-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".html";
     }
     std::error_code ec;
     std::filesystem::create_directories(a->out_dir, ec);
@@ -221,7 +228,12 @@ CommandAction AddBatchCommand(CLI::App& app) {
     {
       std::vector<std::string> input_paths = a->manifests;
       for (const BatchInput& in : all) input_paths.push_back(in.path);
-      RefuseOverlaps(input_paths, BatchOutputPaths(inputs, options, summary_path));
+      std::vector<std::string> outputs = BatchOutputPaths(inputs, options, summary_path);
+      if (a->view) {
+        for (const BatchInput& in : inputs) outputs.push_back(BatchOutputPath(options, in, ".view.html"));
+        outputs.push_back((std::filesystem::path(a->out_dir) / index_name).string());
+      }
+      RefuseOverlaps(input_paths, outputs);
       ProbeOutputFolder(ResolveOutputPath(summary_path));
       if (options.resume) RefuseChangedSettings(inputs, options);
     }
@@ -236,12 +248,16 @@ CommandAction AddBatchCommand(CLI::App& app) {
       const std::vector<BatchOutcome> outcomes = RunBatchOverMpi(inputs, options, on_done);
       if (mpi.rank() != 0) return 0;  // rank 0 reports (mpirun exits with its code)
       progress.Finish();
-      return Finish(outcomes, summary_path, SecondsSince(start));
+      const int code = Finish(outcomes, summary_path, SecondsSince(start));
+      if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
+      return code;
     }
 #endif
     const std::vector<BatchOutcome> outcomes = RunBatch(inputs, options, on_done);
     progress.Finish();
-    return Finish(outcomes, summary_path, SecondsSince(start));
+    const int code = Finish(outcomes, summary_path, SecondsSince(start));
+    if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
+    return code;
   };
 }
 
