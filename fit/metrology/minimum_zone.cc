@@ -375,10 +375,10 @@ std::vector<int> InitialWorkingSet(NodeType kind, const std::vector<Eigen::Vecto
 // from the subset's solution. Each LP then has |S| rows instead of N: 20 000 noisy sphere
 // points took over 100 s in one solve.
 MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
-                                 const std::vector<double>& start) {
-  constexpr int kDirectLimit = 1500, kExtremes = 250, kSpread = 500, kAdded = 250;
+                                 const std::vector<double>& start, int direct_limit) {
+  constexpr int kExtremes = 250, kSpread = 500, kAdded = 250;
   const int n = static_cast<int>(points.size());
-  if (n <= kDirectLimit) return SolveAll(kind, points, start);
+  if (n <= direct_limit || n < 4 * (kExtremes + kSpread) / 3) return SolveAll(kind, points, start);
   std::vector<int> set = InitialWorkingSet(kind, points, start, kExtremes, kSpread);
   std::vector<double> theta = start;
   int iterations = 0, exchanges = 0, escapes = 0;

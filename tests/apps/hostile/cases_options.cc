@@ -178,7 +178,7 @@ std::vector<Case> OptionCases() {
     if (o.exit_code == 0) c.must_exist = o.outputs;
     c.seconds = o.seconds;
     c.defect = o.defect;
-    c.sanitized = n++ % 3 == 0 || !o.defect.empty();
+    c.sanitized = (n++ % 3 == 0 || !o.defect.empty()) && o.id != "fit_minimum_zone_20000";
     cases.push_back(c);
   }
   return cases;

@@ -142,6 +142,11 @@ TEST(BatteryContract, AtLeast300CasesWithUniqueNames) {
   }
   for (const char* f : {"readers", "models", "options", "outputs", "batch", "degenerate"})
     EXPECT_GT(families[f], 0) << f;
+  size_t sanitized = 0;
+  for (const Case& c : all) sanitized += c.sanitized;
+  std::printf("battery: %zu cases (", all.size());
+  for (const auto& [f, n] : families) std::printf(" %s %d", f.c_str(), n);
+  std::printf(" ), %zu in the sanitized subset\n", sanitized);
 }
 
 // The regression tests of issue 26's defects: every defect has cases (printed for the record).
