@@ -51,6 +51,7 @@ Case Degenerate(const std::string& name, const std::string& cloud, const std::st
 }  // namespace
 
 Case ZeroInliers();
+Case OnePlaneSolid(unsigned seed);
 
 std::vector<Case> DegenerateCases() {
   std::vector<Case> cases = {
@@ -76,6 +77,7 @@ std::vector<Case> DegenerateCases() {
                  "fit d.xyz --model sphere --out m.json", 1, "distinct", "", 8),
   };
   cases.push_back(ZeroInliers());
+  for (unsigned seed : {24u, 25u, 30u, 31u}) cases.push_back(OnePlaneSolid(seed));
   return cases;
 }
 
@@ -98,6 +100,52 @@ Case ZeroInliers() {
     if (r.find("\"success\": true") != std::string::npos &&
         r.find("\"inliers\": 0,") != std::string::npos)
       p.push_back("the report says success with 0 inliers");
+    return p;
+  };
+  return c;
+}
+
+// One plane is a half-space, never a solid by itself. reconstruct may close it with unmeasured
+// planes (a verified box, exit 0) or refuse (exit 1, the report saying why); it must never
+// write an unbounded model as a solid. Checked independently: the model's value must be > 0
+// (outside) at points 1000 units away along the plane, at every offset across it (a slab
+// between two planes parallel to the cloud, the old output, is inside there). The seeds are
+// clouds on which the code before issue 26 wrote such slabs (4 of 40 seeds tried).
+Case OnePlaneSolid(unsigned seed) {
+  Case c = Degenerate("reconstruct_one_plane_seed" + std::to_string(seed), "",
+                      "{cli} reconstruct d.xyz --out m.json --report r.json; s=$?; test -e m.json "
+                      "&& {cli} eval m.json far.xyz > v.txt; [ $s -le 1 ] && s=0; exit $s",
+                      0, "", "reconstruct of one plane writes a half-space and reports bounded: true",
+                      30);
+  c.setup = [seed](const std::string& dir) {
+    Write(dir + "/d.xyz", PlaneXyz(300, true, 0.002, seed));
+    std::ostringstream far;
+    for (double y : {1000.0, -1000.0})
+      for (int k = -100; k <= 100; ++k) {  // the cloud is z = 0.1 x + noise, |z| < 0.11
+        far << "0 " << y << ' ' << 0.002 * k << '\n';
+        far << y << " 0 " << 0.1 * y + 0.002 * k << '\n';
+      }
+    Write(dir + "/far.xyz", far.str());
+  };
+  c.outputs = {"m.json", "r.json", "v.txt"};
+  c.must_exist = {"r.json"};
+  c.check = [](const std::string& dir, const RunOutcome&) {
+    std::vector<std::string> p;
+    std::ifstream values(dir + "/v.txt");
+    if (!values) {  // no model: the report must say it failed
+      std::ifstream in(dir + "/r.json");
+      std::stringstream text;
+      text << in.rdbuf();
+      if (text.str().find("\"success\": false") == std::string::npos)
+        p.push_back("no model written, but the report does not say \"success\": false");
+      return p;
+    }
+    int inside = 0, count = 0;
+    for (double f; values >> f; ++count) inside += !(f > 0);
+    if (count != 804) p.push_back("eval gave " + std::to_string(count) + " values, not 804");
+    if (inside > 0)
+      p.push_back("the written solid is unbounded: " + std::to_string(inside) +
+                  " points 1000 away along the plane are inside it");
     return p;
   };
   return c;

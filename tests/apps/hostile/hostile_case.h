@@ -52,7 +52,8 @@ std::vector<Case> DegenerateCases();
 
 // File makers for the cases (hostile_files.cc).
 void Write(const std::string& path, const std::string& bytes);
-std::string PlaneXyz(int n, bool normals = true, double noise = 0.002);    // z = 0.1 x + noise
+std::string PlaneXyz(int n, bool normals = true, double noise = 0.002,
+                     unsigned seed = 7);  // z = 0.1 x + noise, x and y uniform in [-1, 1]
 std::string SphereXyz(int n, double radius = 1.0, bool normals = true);  // centre 0
 std::string NoisySphereXyz(int n, double noise);  // unit sphere, radial Gaussian noise, no normals
 std::string PlyBinaryHeader(long long vertices, const std::string& extra_properties = "");

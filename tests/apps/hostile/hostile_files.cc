@@ -21,8 +21,8 @@ void Write(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
 
-std::string PlaneXyz(int n, bool normals, double noise) {
-  std::mt19937 rng(7);
+std::string PlaneXyz(int n, bool normals, double noise, unsigned seed) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> g(0.0, noise);
   std::ostringstream s;

@@ -41,9 +41,10 @@ TEST(MinimumZoneExchange, SameZoneAsOneLpOverEveryPoint) {
     std::vector<double> guess;
   };
   const std::vector<Set> sets = {
-      {NodeType::kSphere, NoisySphere(1600, 0.01, 3), {0, 0, 0, 2}},
-      {NodeType::kSphere, NoisySphere(1600, 0.002, 4), {0, 0, 0, 2}},
-      {NodeType::kCylinder, NoisyCylinder(1600, 0.005, 5), {0, 0, 0, 0, 0, 1, 0.5}},
+      // 2 100 points: the first working set (at most 1 000) is under half the cloud, so the
+      // exchange runs rounds instead of falling back to the one LP.
+      {NodeType::kSphere, NoisySphere(2100, 0.01, 3), {0, 0, 0, 2}},
+      {NodeType::kCylinder, NoisyCylinder(2100, 0.005, 5), {0, 0, 0, 0, 0, 1, 0.5}},
   };
   for (const Set& s : sets) {
     const LeastSquaresResult ls = LeastSquaresFit(s.kind, s.points, s.guess);
