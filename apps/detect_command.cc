@@ -45,7 +45,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--min-points", a->min_points, "Smallest primitive (default: max(10, N/500))")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", a->seed, "Random seed (the result depends on it only, not on threads)");
-  cmd->add_option("--threads", a->threads, "Threads (default: all cores)")
+  cmd->add_option("--threads", a->threads, "Threads (default: all cores; at most 256 are used)")
       ->check(CLI::NonNegativeNumber);
   return [a]() {
     DetectionOptions options;

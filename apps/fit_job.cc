@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "apps/option_validators.h"
 #include "datasets/io/io_error.h"
 #include "datasets/normals/normal_trust.h"
 #include "fit/common/fit_report.h"
@@ -17,15 +18,8 @@ std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& te
   std::vector<double> values;
   std::stringstream s(text.substr(eq + 1));
   std::string item;
-  while (std::getline(s, item, ',')) {
-    try {
-      size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError("--fix " + text + ": '" + item + "' is not a number");
-    }
-  }
+  while (std::getline(s, item, ','))  // decimal, finite (apps/option_validators.h)
+    values.push_back(ParseDecimal(item, "--fix " + text));
   return {text.substr(0, eq), values};
 }
 

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "apps/option_validators.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -36,13 +37,7 @@ PatchShapeConstraints ShapeConstraintsFromArguments(const ModelFitRequest& reque
       const size_t comma = text.find(',', start);
       const std::string item =
           text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      try {
-        size_t used = 0;
-        out.push_back(std::stod(item, &used));
-        if (used != item.size()) throw std::invalid_argument(item);
-      } catch (const std::exception&) {
-        throw InputError(option + " '" + text + "': '" + item + "' is not a number");
-      }
+      out.push_back(ParseDecimal(item, option + " '" + text + "'"));
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
@@ -89,7 +84,7 @@ int RunTreeFit(const ModelFitRequest& request) {
   const Model init = ReadModelFile(request.init);
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
-  const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, TreeFitOptions{});
+  const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, CommandLineTreeFitOptions());
   const nlohmann::json report = r.ToJson(normals);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
@@ -138,7 +133,7 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
               << " fit failed: " << start.message << "\n";
     return 1;
   }
-  const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, TreeFitOptions{});
+  const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, CommandLineTreeFitOptions());
   AddTreeFitFigures(r, start.model, cloud.points, normals, &report);
   if (!r.success) {
     if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");

@@ -69,6 +69,13 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request);
 ModelKindFit FitMeshCloud(const ModelFitRequest& request);
 
 bool IsPatchKind(const std::string& kind);
+// The tree fitter's options of the command line: the defaults, with the work limit
+// (fit/tree/tree_fitter.h: kMaxTreeFitWork).
+inline TreeFitOptions CommandLineTreeFitOptions() {
+  TreeFitOptions options;
+  options.max_work = kMaxTreeFitWork;
+  return options;
+}
 // box, paraboloid, capsule: a robust start (fit/tree/shape_starts.h), then the tree fitter; the
 // report is the --init one plus "kind" and the start's parameters ("start").
 bool IsShapeKind(const std::string& kind);

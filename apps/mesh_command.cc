@@ -18,7 +18,7 @@ CommandAction AddMeshCommand(CLI::App& app) {
   auto box = std::make_shared<std::vector<double>>();
   auto cell = std::make_shared<double>(0.0);
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
-  cmd->add_option("--out", *out, "Output mesh (.ply)")->required();
+  cmd->add_option("--out", *out, "Output mesh (.ply; - for stdout)")->required();
   cmd->add_option("--box", *box,
                   "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, enlarged)")
       ->delimiter(',')
@@ -26,8 +26,8 @@ CommandAction AddMeshCommand(CLI::App& app) {
   cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100)")
       ->check(CLI::PositiveNumber);
   return [model_path, out, box, cell]() {
-    if (out->size() < 4 || out->substr(out->size() - 4) != ".ply")
-      throw InputError(*out + ": unsupported output format (use .ply)");
+    if (*out != "-" && (out->size() < 4 || out->substr(out->size() - 4) != ".ply"))
+      throw InputError(*out + ": unsupported output format (use .ply, or - for stdout)");
     const Model model = ReadModelFile(*model_path);
     MeshOptions options;
     options.cell = *cell;

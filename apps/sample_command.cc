@@ -5,6 +5,7 @@
 
 #include "apps/command.h"
 #include "datasets/io/io_error.h"
+#include "datasets/io/read_limits.h"
 #include "datasets/io/model_file.h"
 #include "datasets/generators/model_sampler.h"
 #include "datasets/clouds/ply_writer.h"
@@ -36,13 +37,21 @@ CommandAction AddSampleCommand(CLI::App& app) {
                   "Partial view: keep normals within this angle of --view")
       ->check(CLI::Range(0.0, 180.0));
   cmd->add_option("--out", *out,
-                  "Output cloud (.xyz/.pwn/.txt: x y z nx ny nz; .ply: binary with normals)")
+                  "Output cloud (.xyz/.pwn/.txt: x y z nx ny nz; .ply: binary with normals; - for "
+                  "stdout, as .xyz)")
       ->required();
   return [model_path, out, options, view]() {
-    const std::string ext = out->size() > 4 ? out->substr(out->find_last_of('.') + 1) : "";
+    const size_t dot = out->find_last_of('.');
+    const std::string ext = *out == "-" ? "xyz" : dot == std::string::npos ? "" : out->substr(dot + 1);
     const bool ply = ext == "ply";
     if (!ply && ext != "xyz" && ext != "pwn" && ext != "txt")
-      throw InputError(*out + ": unsupported output format (use .xyz, .pwn, .txt or .ply)");
+      throw InputError(*out +
+                       ": unsupported output format (use .xyz, .pwn, .txt or .ply; - for stdout)");
+    if (static_cast<unsigned long long>(options->count) > CurrentReadLimits().max_points)
+      throw InputError("--count " + std::to_string(options->count) +
+                       ": more than the limit of " +
+                       std::to_string(CurrentReadLimits().max_points) +
+                       " points (raise it with --max-points)");
     if (view->size() == 3) options->view_dir = Eigen::Vector3d((*view)[0], (*view)[1], (*view)[2]);
     const Model model = ReadModelFile(*model_path);
     SampledCloud sampled;

@@ -8,6 +8,7 @@
 // Built with MPI, `mpirun -np P implicitfit batch ...` distributes the inputs (apps/batch/batch_mpi.h).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "apps/batch/batch_inputs.h"
+#include "apps/batch/batch_job.h"
 #ifdef IMPLICITFIT_WITH_MPI
 #include "apps/batch/batch_mpi.h"
 #endif
@@ -22,9 +24,11 @@
 #include "apps/batch/batch_runner.h"
 #include "apps/batch/batch_view.h"
 #include "apps/command.h"
+#include "apps/output_guard.h"
 #include "apps/fit_job.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
+#include "datasets/io/output_path.h"
 #include "fit/common/thread_count.h"
 
 namespace implicitfit {
@@ -64,6 +68,28 @@ int Finish(const std::vector<BatchOutcome>& outcomes, const std::string& summary
     if (!o.Succeeded()) std::printf("  %s %s\n", BatchStatusName(o.status), o.Failure().c_str());
   std::printf("summary: %s\n", summary_path.c_str());
   return failed > 0 ? 1 : 0;
+}
+
+// The options the results depend on, per kind (BatchOptions::settings).
+nlohmann::json BatchSettings(const BatchArgs& a, bool scene, bool solid, bool model_kind) {
+  nlohmann::json s = {{"model", a.kind}};
+  if (model_kind) {
+    s["degree"] = a.degree;
+    s["convex"] = a.convex;
+    s["cells"] = a.cells;
+    s["cell"] = a.cell;
+    s["continuity"] = a.continuity;
+    return s;
+  }
+  s["seed"] = a.seed;
+  if (solid) return s;
+  s["threshold"] = a.threshold;
+  if (scene) return s;
+  std::vector<std::string> fixes = a.fixes;
+  std::sort(fixes.begin(), fixes.end());
+  s["fix"] = fixes;
+  s["estimator"] = a.estimator;
+  return s;
 }
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
@@ -107,7 +133,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
                   "Folder of the models, reports and summary.csv (created)")
       ->required();
   cmd->add_option("--jobs", a->jobs,
-                  "Inputs fitted at once (default: the number of cores; under MPI one per rank)")
+                  "Inputs fitted at once (default: the number of cores; at most 256 and the "
+                  "number of inputs; under MPI one per rank)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--view", a->view,
                 "Also write DIR/<name>.view.html per result and DIR/index.html linking them");
@@ -156,7 +183,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
     std::error_code ec;
     std::filesystem::create_directories(a->out_dir, ec);
     if (!std::filesystem::is_directory(a->out_dir))
-      throw FileError(a->out_dir, "cannot create the output folder");
+      throw FileError(a->out_dir, "cannot create the output folder" +
+                                      (ec ? ": " + ec.message() : std::string()));
 
     BatchOptions options;
     options.out_dir = a->out_dir;
@@ -165,7 +193,10 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.solid = solid;
     options.detect.seed = a->seed;
     options.detect.threshold = scene ? a->threshold : 0.0;
-    options.jobs = ThreadCountOrDefault(a->jobs);
+    // Clamped: threads beyond 256 (or the inputs) do not fit faster; those the system refuses
+    // to start leave their share to the others (apps/batch/batch_runner.cc).
+    options.jobs = std::min({ThreadCountOrDefault(a->jobs), 256,
+                             static_cast<int>(std::max<size_t>(1, inputs.size()))});
     options.fit = fit;
     options.fit.num_threads =
         options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
@@ -190,6 +221,22 @@ CommandAction AddBatchCommand(CLI::App& app) {
     }
 
     const std::string summary_path = (std::filesystem::path(a->out_dir) / summary_name).string();
+    options.settings = BatchSettings(*a, scene, solid, model_kind);
+    // Before any fit: no output may be an input (a cloud named like another's labels, a
+    // manifest in the out-dir), the folder must take files, results of other settings must
+    // not be resumed.
+    {
+      std::vector<std::string> input_paths = a->manifests;
+      for (const BatchInput& in : all) input_paths.push_back(in.path);
+      std::vector<std::string> outputs = BatchOutputPaths(inputs, options, summary_path);
+      if (a->view) {
+        for (const BatchInput& in : inputs) outputs.push_back(BatchOutputPath(options, in, ".view.html"));
+        outputs.push_back((std::filesystem::path(a->out_dir) / index_name).string());
+      }
+      RefuseOverlaps(input_paths, outputs);
+      ProbeOutputFolder(ResolveOutputPath(summary_path));
+      if (options.resume) RefuseChangedSettings(inputs, options);
+    }
     const auto start = std::chrono::steady_clock::now();
     BatchProgress progress(inputs.size(), ::isatty(STDERR_FILENO) == 1);
     const auto on_done = [&](const BatchOutcome& o) { progress.Done(o); };

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <map>
 
+#include "apps/option_validators.h"
 #include "datasets/io/io_error.h"
+#include "datasets/io/text_file.h"
 #include "fit/primitive/primitive_fitter.h"
 
 namespace implicitfit {
@@ -35,8 +37,7 @@ void AddDirectory(const std::string& dir, std::vector<Entry>* entries) {
 }
 
 void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
-  std::ifstream in(manifest);
-  if (!in || fs::is_directory(manifest)) throw FileError(manifest, "cannot read the manifest");
+  std::istringstream in(ReadTextFile(manifest));  // a regular file (never a FIFO), size-capped
   const fs::path base = fs::path(manifest).parent_path();
   std::string line;
   for (long number = 1; std::getline(in, line); ++number) {
@@ -56,7 +57,6 @@ void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
     e.path = p.is_absolute() || base.empty() ? line : (base / p).string();
     entries->push_back(e);
   }
-  if (in.bad()) throw FileError(manifest, "cannot read the manifest");
 }
 
 }  // namespace
@@ -106,12 +106,9 @@ Shard ParseShard(const std::string& text) {
   };
   if (slash == std::string::npos) throw bad();
   try {
-    size_t used_i = 0, used_n = 0;
-    const std::string i = text.substr(0, slash), n = text.substr(slash + 1);
-    shard.index = std::stoi(i, &used_i);
-    shard.count = std::stoi(n, &used_n);
-    if (used_i != i.size() || used_n != n.size()) throw bad();
-  } catch (const std::logic_error&) {
+    shard.count = static_cast<int>(ParseDecimalInteger(text.substr(slash + 1), "--shard", 1, 1000000));
+    shard.index = static_cast<int>(ParseDecimalInteger(text.substr(0, slash), "--shard", 1, shard.count));
+  } catch (const InputError&) {
     throw bad();
   }
   if (shard.count < 1 || shard.index < 1 || shard.index > shard.count) throw bad();

@@ -28,6 +28,10 @@ struct BatchJob {
 std::string BatchOutputPath(const BatchOptions& options, const BatchInput& input,
                             const char* suffix);
 
+// An earlier report (datasets/io/text_file.h: a regular file, size-capped; never a FIFO that
+// would hang the batch); throws on anything unreadable or not JSON.
+nlohmann::json ReadBatchReport(const std::string& path);
+
 BatchOutcome RunBatchJob(const BatchInput& input, const BatchOptions& options, const BatchJob& job);
 
 }  // namespace implicitfit

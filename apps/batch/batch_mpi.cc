@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "datasets/io/output_path.h"
+
 namespace implicitfit {
 namespace {
 
@@ -66,7 +68,7 @@ void SendStop(int worker) { MPI_Send(nullptr, 0, MPI_CHAR, worker, kStop, MPI_CO
 std::vector<BatchOutcome> Coordinate(const std::vector<BatchInput>& inputs,
                                      const BatchOptions& options,
                                      const BatchProgressCallback& on_done, int size) {
-  RemoveStaleTemporaries(inputs, options.out_dir);  // before any worker starts writing
+  RemoveStaleTemporaries(options.out_dir);  // before any worker starts writing (killed runs only)
   std::vector<BatchOutcome> outcomes(inputs.size());
   // Every worker holds up to kQueued inputs, so it never waits for rank 0 between two fits
   // (rank 0 answers only between its own fits); a worker with none left is stopped.

@@ -15,6 +15,10 @@
 #include "apps/fit_job.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/model_file.h"
+#include "datasets/io/output_path.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/text_file.h"
+#include "model/worker_threads.h"
 
 namespace implicitfit {
 namespace fs = std::filesystem;
@@ -34,9 +38,7 @@ bool ReadCompleteOutputs(const BatchInput& in, const BatchOptions& o, NodeType k
   try {
     const Model model = ReadModelFile(ModelPath(o, in));
     if (model.root() < 0 || model.nodes()[model.root()].type != kind) return false;
-    std::ifstream report_file(ReportPath(o, in));
-    if (!report_file) return false;
-    const nlohmann::json report = nlohmann::json::parse(report_file);
+    const nlohmann::json report = ReadBatchReport(ReportPath(o, in));
     if (!report.value("success", false)) return false;
     if (report.value("estimator", std::string("robust")) != EstimatorName(estimator)) return false;
     out->rms = report.at("rms_distance").get<double>();
@@ -69,9 +71,7 @@ bool ReadCompleteModelKindOutputs(const BatchInput& in, const BatchOptions& o, B
   try {
     const Model model = ReadModelFile(ModelPath(o, in));
     if (model.root() < 0 || model.nodes()[model.root()].type != o.model_kind) return false;
-    std::ifstream report_file(ReportPath(o, in));
-    if (!report_file) return false;
-    const nlohmann::json report = nlohmann::json::parse(report_file);
+    const nlohmann::json report = ReadBatchReport(ReportPath(o, in));
     if (!report.value("success", false)) return false;
     if (o.require_certified && !report.value("certified_convex", false)) return false;
     out->rms = report.at("rms_distance").get<double>();
@@ -123,6 +123,68 @@ std::string BatchOutputPath(const BatchOptions& o, const BatchInput& in, const c
   return (fs::path(o.out_dir) / (in.name + suffix)).string();
 }
 
+nlohmann::json ReadBatchReport(const std::string& path) {
+  return nlohmann::json::parse(ReadTextFile(path));
+}
+
+namespace {
+
+// The stored settings of an earlier report: null when there is none (or no readable report).
+nlohmann::json StoredSettings(const std::string& report_path) {
+  try {
+    const nlohmann::json report = ReadBatchReport(report_path);
+    if (report.is_object() && report.contains("batch_settings")) return report["batch_settings"];
+  } catch (const std::exception&) {
+  }
+  return nullptr;
+}
+
+std::string SettingsDifference(const nlohmann::json& stored, const nlohmann::json& current) {
+  std::string diff;
+  for (auto it = current.begin(); it != current.end(); ++it) {
+    const nlohmann::json there = stored.is_object() && stored.contains(it.key())
+                                     ? stored.at(it.key())
+                                     : nlohmann::json("(absent)");
+    if (there != it.value())
+      diff += (diff.empty() ? "" : ", ") + it.key() + " " + there.dump() + " there, " +
+              it.value().dump() + " now";
+  }
+  if (stored.is_object())
+    for (auto it = stored.begin(); it != stored.end(); ++it)
+      if (!current.contains(it.key()))
+        diff += (diff.empty() ? "" : ", ") + it.key() + " " + it.value().dump() + " there only";
+  return diff;
+}
+
+}  // namespace
+
+void RefuseChangedSettings(const std::vector<BatchInput>& inputs, const BatchOptions& o) {
+  for (const BatchInput& in : inputs) {
+    const std::string report = ReportPath(o, in);
+    const nlohmann::json stored = StoredSettings(report);
+    if (stored.is_null() || stored == o.settings) continue;
+    throw FileError(report, "made with other settings (" + SettingsDifference(stored, o.settings) +
+                                "): --resume would mix results; use another --out-dir, the "
+                                "same options, or drop --resume");
+  }
+}
+
+std::vector<std::string> BatchOutputPaths(const std::vector<BatchInput>& inputs,
+                                          const BatchOptions& o, const std::string& summary_path) {
+  std::vector<std::string> paths;
+  for (const BatchInput& in : inputs) {
+    paths.push_back(ReportPath(o, in));
+    if (o.scene) {
+      paths.push_back(BatchOutputPath(o, in, ".scene.json"));
+      paths.push_back(BatchOutputPath(o, in, ".labels.txt"));
+    } else {
+      paths.push_back(ModelPath(o, in));
+    }
+  }
+  paths.push_back(summary_path);
+  return paths;
+}
+
 BatchOutcome RunBatchJob(const BatchInput& in, const BatchOptions& o, const BatchJob& job) {
   BatchOutcome out;
   out.input = in.path;
@@ -131,7 +193,7 @@ BatchOutcome RunBatchJob(const BatchInput& in, const BatchOptions& o, const Batc
     out.error = job.refusal;
     return out;
   }
-  if (o.resume && job.read_complete(&out)) {
+  if (o.resume && StoredSettings(ReportPath(o, in)) == o.settings && job.read_complete(&out)) {
     out.status = BatchStatus::kSkipped;
     return out;
   }
@@ -139,9 +201,10 @@ BatchOutcome RunBatchJob(const BatchInput& in, const BatchOptions& o, const Batc
   const std::string report_path = ReportPath(o, in);
   std::error_code ignored;
   try {
-    const nlohmann::json report = job.run(&out);
+    nlohmann::json report = job.run(&out);
     if (out.status != BatchStatus::kOk)
       for (const std::string& path : job.results) fs::remove(path, ignored);
+    report["batch_settings"] = o.settings;
     WriteFileAtomically(report_path, report.dump(2) + "\n");
   } catch (const std::exception& e) {
     for (const std::string& path : job.results) fs::remove(path, ignored);
@@ -187,30 +250,11 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   return RunBatchJob(in, o, job);
 }
 
-void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir) {
-  std::set<std::string> prefixes;
-  for (const BatchInput& in : inputs) {
-    prefixes.insert(in.name + ".model.json.tmp.");
-    prefixes.insert(in.name + ".report.json.tmp.");
-    prefixes.insert(in.name + ".scene.json.tmp.");
-    prefixes.insert(in.name + ".labels.txt.tmp.");
-    prefixes.insert(in.name + ".view.html.tmp.");
-  }
-  std::error_code ec;
-  std::vector<fs::path> stale;
-  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string file = it->path().filename().string();
-    const size_t tmp = file.rfind(".tmp.");
-    if (tmp != std::string::npos && prefixes.count(file.substr(0, tmp + 5)))
-      stale.push_back(it->path());
-  }
-  for (const fs::path& p : stale) fs::remove(p, ec);
-}
-
 std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
                                    const BatchOptions& options,
                                    const BatchProgressCallback& on_done) {
-  RemoveStaleTemporaries(inputs, options.out_dir);
+  // Temporaries of killed runs only: a concurrent batch's are locked (datasets/io/output_path.h).
+  RemoveStaleTemporaries(options.out_dir);
   std::vector<BatchOutcome> outcomes(inputs.size());
   std::atomic<size_t> next{0};
   std::mutex report_mutex;
@@ -222,10 +266,9 @@ std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
     }
   };
   const size_t threads = std::max<size_t>(1, std::min<size_t>(options.jobs, inputs.size()));
-  std::vector<std::thread> pool;
-  for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  // Threads that cannot start (system limits) leave their share to the others: the queue is
+  // shared, so every input is still processed.
+  RunWorkers(static_cast<int>(threads), [&](int) { worker(); });
   return outcomes;
 }
 

@@ -11,7 +11,8 @@
 //   skipped  (resume) the model and report of an earlier run are complete: the model parses
 //            and is of the requested kind, the report parses and says success. Nothing is
 //            refitted; failed and error inputs are retried.
-// Temporaries left by a killed run (<name>.*.json.tmp.<pid>) are removed before the run.
+// Temporaries left by a killed run are removed before the run; those of a concurrent run (in
+// the same folder) are locked and kept (datasets/io/output_path.h).
 // The summary (SummaryCsv) has one row per input, in input order:
 //   input,status,rms,inliers,points,seconds,error
 // rms/inliers/points from the fit (for skipped inputs from the earlier report; empty for error),
@@ -19,6 +20,7 @@
 #pragma once
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,10 @@ struct BatchOptions {
   std::function<ModelKindFit(const std::string& cloud)> model_fit;
   NodeType model_kind = NodeType::kBernsteinPatch;
   bool require_certified = false;
+  // The options the results depend on ({"model": ..., "seed": ..., ...}), stored in every report
+  // as "batch_settings": --resume skips an input only when its report has the same settings
+  // (RefuseChangedSettings refuses the run when an earlier report has other ones).
+  nlohmann::json settings = nlohmann::json::object();
 };
 
 // Called (serialised, from any pool thread) when an input is done.
@@ -91,8 +97,15 @@ BatchOutcome ProcessSceneInput(const BatchInput& input, const BatchOptions& opti
 // rms, inliers and points from the report.
 BatchOutcome ProcessSolidInput(const BatchInput& input, const BatchOptions& options);
 
-// Removes the temporaries a killed run left for these inputs in out_dir.
-void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::string& out_dir);
+// --resume: InputError naming the first report in out_dir whose "batch_settings" differ from
+// options.settings, with the difference (a resumed run must not mix results of other
+// settings); reports without settings (or unreadable) are refitted, not refused.
+void RefuseChangedSettings(const std::vector<BatchInput>& inputs, const BatchOptions& options);
+
+// Every file the batch may write for these inputs (models, reports, scenes, labels, summary).
+std::vector<std::string> BatchOutputPaths(const std::vector<BatchInput>& inputs,
+                                          const BatchOptions& options,
+                                          const std::string& summary_path);
 
 // The summary.csv text (RFC 4180 quoting), header included.
 std::string SummaryCsv(const std::vector<BatchOutcome>& outcomes);

@@ -15,9 +15,7 @@ bool ReadCompleteScene(const BatchInput& in, const BatchOptions& o, BatchOutcome
     const Scene scene = ReadSceneFile(BatchOutputPath(o, in, ".scene.json"));
     ReadLabelsFile(BatchOutputPath(o, in, ".labels.txt"), static_cast<int>(scene.primitives.size()),
                    scene.points);
-    std::ifstream report_file(BatchOutputPath(o, in, ".report.json"));
-    if (!report_file) return false;
-    const nlohmann::json report = nlohmann::json::parse(report_file);
+    const nlohmann::json report = ReadBatchReport(BatchOutputPath(o, in, ".report.json"));
     if (report.value("primitives", 0) != static_cast<int>(scene.primitives.size()) ||
         scene.primitives.empty())
       return false;

@@ -19,9 +19,7 @@ void TakeFigures(const nlohmann::json& report, BatchOutcome* out) {
 bool ReadCompleteSolid(const BatchInput& in, const BatchOptions& o, BatchOutcome* out) {
   try {
     ReadModelFile(BatchOutputPath(o, in, ".model.json"));
-    std::ifstream report_file(BatchOutputPath(o, in, ".report.json"));
-    if (!report_file) return false;
-    const nlohmann::json report = nlohmann::json::parse(report_file);
+    const nlohmann::json report = ReadBatchReport(BatchOutputPath(o, in, ".report.json"));
     if (!report.value("success", false) || !report.contains("expression")) return false;
     TakeFigures(report, out);
     return true;

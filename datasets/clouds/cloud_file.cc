@@ -35,11 +35,12 @@ PointCloud ReadByExtension(const std::string& path, CloudFileInfo* info) {
 #endif
 }
 
-}  // namespace
+CloudReadObserver& Observer() {
+  static CloudReadObserver observer;
+  return observer;
+}
 
-PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info) {
-  CloudFileInfo local;
-  CloudFileInfo& out = info ? *info : local;
+PointCloud ReadAndRepair(const std::string& path, CloudFileInfo& out) {
   PointCloud cloud = ReadByExtension(path, &out);
   if (out.invalid_normals.empty()) return cloud;
   if (out.invalid_normals.size() == cloud.size()) {
@@ -54,6 +55,18 @@ PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info) {
                         " normals are NaN, infinite or zero-length and the cloud is too small "
                         "to re-estimate them");
   }
+  return cloud;
+}
+
+}  // namespace
+
+void SetCloudReadObserver(CloudReadObserver observer) { Observer() = std::move(observer); }
+
+PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info) {
+  CloudFileInfo local;
+  CloudFileInfo& out = info ? *info : local;
+  PointCloud cloud = ReadAndRepair(path, out);
+  if (Observer()) Observer()(path, out);
   return cloud;
 }
 

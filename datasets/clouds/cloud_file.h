@@ -9,6 +9,7 @@
 // to estimate missing ones and orient them. `info`, when given, tells what the file held.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "datasets/clouds/cloud_file_info.h"
@@ -17,5 +18,11 @@
 namespace implicitfit {
 
 PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info = nullptr);
+
+// Called after every successful ReadCloudFile (from the reading thread), e.g. for the command
+// line to tell the user how many records were dropped (info.dropped_missing: NaN coordinates,
+// the "no measurement" of PCD and range grids). Process-wide; empty by default.
+using CloudReadObserver = std::function<void(const std::string& path, const CloudFileInfo& info)>;
+void SetCloudReadObserver(CloudReadObserver observer);
 
 }  // namespace implicitfit

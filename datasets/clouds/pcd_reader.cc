@@ -15,7 +15,8 @@
 
 #include "datasets/io/io_error.h"
 #include "datasets/clouds/pcl_conversion.h"
-#include "datasets/io/text_file.h"
+#include "datasets/io/input_file.h"
+#include "datasets/io/read_limits.h"
 #include "datasets/io/token_lines.h"
 
 namespace implicitfit {
@@ -55,20 +56,19 @@ bool ParseCount(const std::string& token, unsigned long long* value) {
   return *end == '\0' && errno == 0;
 }
 
-PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
-  if (bytes.empty()) throw FileError(path, "empty file");
+PcdHeader ParseHeader(InputFile& file) {
+  const std::string& path = file.path();
+  if (file.size() == 0) throw FileError(path, "empty file");
   PcdHeader h;
-  size_t pos = 0;
-  long line = 0;
   bool has_width = false;
+  std::string text;
+  constexpr unsigned long long kMaxHeaderBytes = 16ULL << 20;
   while (true) {
-    if (pos >= bytes.size())
+    if (!file.ReadLine(&text, CurrentReadLimits().max_line_bytes))
       throw FileError(path, "header has no DATA line (truncated or not PCD)");
-    size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos) end = bytes.size();
-    const std::string text = bytes.substr(pos, end - pos);
-    pos = end + 1;
-    ++line;
+    const long line = file.line_number();
+    if (file.offset() > kMaxHeaderBytes)
+      throw LineError(path, line, "header longer than 16 MiB (not a PCD header)");
     std::istringstream in(text);
     std::string key;
     in >> key;
@@ -125,8 +125,8 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
                           : "unknown header keyword '" + key.substr(0, 30) + "'");
     }
   }
-  h.data_offset = pos;
-  h.data_line = line + 1;
+  h.data_offset = file.offset();
+  h.data_line = file.line_number() + 1;
   if (h.counts.empty()) h.counts.assign(h.fields.size(), 1);
   if (h.fields.empty() || h.sizes.size() != h.fields.size() || h.types.size() != h.fields.size() ||
       h.counts.size() != h.fields.size())
@@ -139,6 +139,10 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
     throw FileError(path, "POINTS " + std::to_string(h.points) +
                               " is not WIDTH x HEIGHT = " + std::to_string(h.width * h.height));
   if (h.points == 0) throw FileError(path, "no points (POINTS 0)");
+  if (h.points > CurrentReadLimits().max_points)
+    throw FileError(path, "POINTS " + std::to_string(h.points) + " is more than the limit of " +
+                              std::to_string(CurrentReadLimits().max_points) +
+                              " points (raise it with --max-points)");
   int xyz = 0;
   for (size_t i = 0; i < h.fields.size(); ++i)
     if (h.fields[i] == "x" || h.fields[i] == "y" || h.fields[i] == "z") {
@@ -150,13 +154,14 @@ PcdHeader ParseHeader(const std::string& bytes, const std::string& path) {
   return h;
 }
 
-void CheckAsciiData(const PcdHeader& h, const std::string& bytes, const std::string& path) {
+void CheckAsciiData(const PcdHeader& h, InputFile& file) {
+  const std::string& path = file.path();
   const size_t expected = h.values_per_point();
   std::vector<int> coordinate_column;  // value columns that hold x, y, z
   for (size_t i = 0, column = 0; i < h.fields.size(); column += h.counts[i], ++i)
     if (h.fields[i] == "x" || h.fields[i] == "y" || h.fields[i] == "z")
       coordinate_column.push_back(static_cast<int>(column));
-  TokenLines lines(bytes, h.data_offset, h.data_line);
+  TokenLines lines(&file);
   unsigned long long found = 0;
   while (lines.Next()) {
     const std::vector<std::string>& tokens = lines.tokens();
@@ -184,8 +189,10 @@ void CheckAsciiData(const PcdHeader& h, const std::string& bytes, const std::str
                         std::to_string(h.points) + " points the header declares");
 }
 
-void CheckBinaryData(const PcdHeader& h, const std::string& bytes, const std::string& path) {
-  const unsigned long long available = bytes.size() - std::min(h.data_offset, bytes.size());
+void CheckBinaryData(const PcdHeader& h, const InputFile& file) {
+  const std::string& path = file.path();
+  const unsigned long long available =
+      file.size() - std::min<unsigned long long>(h.data_offset, file.size());
   const unsigned long long point_size = h.point_size();
   if (h.points > ~0ULL / point_size) throw FileError(path, "POINTS too large");
   const unsigned long long needed = h.points * point_size;
@@ -202,24 +209,35 @@ void CheckBinaryData(const PcdHeader& h, const std::string& bytes, const std::st
   // binary_compressed: uint32 compressed size, uint32 uncompressed size, then the LZF block.
   std::uint32_t sizes[2];
   if (available < sizeof sizes) throw FileError(path, "truncated: no compressed data block");
-  std::memcpy(sizes, bytes.data() + h.data_offset, sizeof sizes);
+  if (!file.ReadAt(h.data_offset, sizes, sizeof sizes))
+    throw FileError(path, "truncated: no compressed data block");
   if (sizes[0] > available - sizeof sizes)
     throw FileError(path, "truncated: the compressed block declares " + std::to_string(sizes[0]) +
                               " bytes, the file has " + std::to_string(available - sizeof sizes));
   if (sizes[1] != needed)
     throw FileError(path, "the compressed block holds " + std::to_string(sizes[1]) + " bytes, " +
                               std::to_string(h.points) + " points need " + std::to_string(needed));
+  // LZF (PCL's compression) expands at most 88 times: its longest back reference is 3 bytes
+  // for 264 output bytes. A block declaring more claims data it cannot hold; PCL would
+  // allocate the claimed size first (a 40 MB file declared 7 GB).
+  if (static_cast<unsigned long long>(sizes[1]) > 88ULL * sizes[0] + 264)
+    throw FileError(path, "the compressed block of " + std::to_string(sizes[0]) +
+                              " bytes cannot expand to the " + std::to_string(sizes[1]) +
+                              " it declares (corrupt or forged)");
 }
 
 }  // namespace
 
 PointCloud ReadPcdFile(const std::string& path, CloudFileInfo* info) {
-  const std::string bytes = ReadTextFile(path);
-  const PcdHeader header = ParseHeader(bytes, path);
-  if (header.data == "ascii")
-    CheckAsciiData(header, bytes, path);
-  else
-    CheckBinaryData(header, bytes, path);
+  PcdHeader header;
+  {
+    InputFile file(path);  // checked while streaming (read once here, then by PCL)
+    header = ParseHeader(file);
+    if (header.data == "ascii")
+      CheckAsciiData(header, file);
+    else
+      CheckBinaryData(header, file);
+  }
 
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   pcl::PCLPointCloud2 blob;

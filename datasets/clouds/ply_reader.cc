@@ -5,6 +5,7 @@
 #include <pcl/io/ply_io.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -13,7 +14,8 @@
 
 #include "datasets/io/io_error.h"
 #include "datasets/clouds/pcl_conversion.h"
-#include "datasets/io/text_file.h"
+#include "datasets/io/input_file.h"
+#include "datasets/io/read_limits.h"
 #include "datasets/io/token_lines.h"
 
 namespace implicitfit {
@@ -60,23 +62,24 @@ int TypeSize(const std::string& t) {
   return 0;
 }
 
-PlyHeader ParseHeader(const std::string& bytes, const std::string& path) {
-  if (bytes.empty()) throw FileError(path, "empty file");
-  if (bytes.compare(0, 4, "ply\n") != 0 && bytes.compare(0, 5, "ply\r\n") != 0)
-    throw LineError(path, 1, "not a PLY file (the first line is not 'ply')");
+PlyHeader ParseHeader(InputFile& file) {
+  const std::string& path = file.path();
+  if (file.size() == 0) throw FileError(path, "empty file");
   PlyHeader h;
-  size_t pos = 0;
-  long line = 0;
+  std::string text;
+  // Header lines are short; a header of millions of comment lines is refused at 16 MiB.
+  constexpr unsigned long long kMaxHeaderBytes = 16ULL << 20;
   while (true) {
-    if (pos >= bytes.size())
+    if (!file.ReadLine(&text, CurrentReadLimits().max_line_bytes))
       throw FileError(path, "header has no 'end_header' line (truncated or not PLY)");
-    size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos) end = bytes.size();
-    std::string text = bytes.substr(pos, end - pos);
+    const long line = file.line_number();
     if (!text.empty() && text.back() == '\r') text.pop_back();
-    pos = end + 1;
-    ++line;
-    if (line == 1) continue;  // "ply"
+    if (line == 1) {
+      if (text != "ply") throw LineError(path, 1, "not a PLY file (the first line is not 'ply')");
+      continue;
+    }
+    if (file.offset() > kMaxHeaderBytes)
+      throw LineError(path, line, "header longer than 16 MiB (not a PLY header)");
     std::istringstream in(text);
     std::string keyword;
     in >> keyword;
@@ -95,8 +98,10 @@ PlyHeader ParseHeader(const std::string& bytes, const std::string& path) {
       char* parsed_end = nullptr;
       errno = 0;
       e.count = std::strtoull(count.c_str(), &parsed_end, 10);
-      if (e.name.empty() || count.empty() || *parsed_end != '\0' || errno != 0 || count[0] == '-')
+      if (e.name.empty() || count.empty() || *parsed_end != '\0' || errno != 0 || count[0] == '-' ||
+          !std::isdigit(static_cast<unsigned char>(count[0])))
         throw LineError(path, line, "malformed element line '" + text.substr(0, 60) + "'");
+      if (h.elements.size() >= 1000) throw LineError(path, line, "more than 1000 elements");
       h.elements.push_back(e);
     } else if (keyword == "property") {
       if (h.elements.empty()) throw LineError(path, line, "property before any element");
@@ -116,14 +121,19 @@ PlyHeader ParseHeader(const std::string& bytes, const std::string& path) {
       }
       if (name.empty()) throw LineError(path, line, "property without a name");
       p.name = name;
-      h.elements.back().properties.push_back(p);
+      std::vector<PlyProperty>& properties = h.elements.back().properties;
+      for (const PlyProperty& q : properties)
+        if (q.name == name)
+          throw LineError(path, line, "property '" + name.substr(0, 40) + "' declared twice");
+      if (properties.size() >= 1000) throw LineError(path, line, "more than 1000 properties");
+      properties.push_back(p);
     } else {
       throw LineError(path, line, "unexpected header line '" + text.substr(0, 60) + "'");
     }
   }
   if (h.format.empty()) throw FileError(path, "header has no 'format' line");
-  h.data_offset = pos;
-  h.data_line = line + 1;
+  h.data_offset = file.offset();
+  h.data_line = file.line_number() + 1;
   return h;
 }
 
@@ -134,6 +144,12 @@ const PlyElement& VertexElement(const PlyHeader& h, const std::string& path) {
     for (const PlyProperty& p : e.properties)
       if (!p.count_size && (p.name == "x" || p.name == "y" || p.name == "z")) ++found;
     if (found != 3) throw FileError(path, "the vertex element lacks an x, y or z property");
+    // pcl::PLYReader aborts the process (SIGABRT, PCL 1.13) on a list property in the vertex
+    // element (e.g. "property list uint int idx"); no point cloud needs one.
+    for (const PlyProperty& p : e.properties)
+      if (p.count_size)
+        throw FileError(path, "the vertex element has a list property '" + p.name.substr(0, 40) +
+                                  "' (not supported: vertices take scalar properties only)");
     // pcl::PLYReader packs uchar colours into one rgb(a) field assuming "red green blue
     // [alpha]" in a row; any other layout shifts the following properties (checked with PCL
     // 1.13: a lone red corrupts the normals, blue-green-red corrupts x). Refuse it rather than
@@ -160,6 +176,11 @@ const PlyElement& VertexElement(const PlyHeader& h, const std::string& path) {
                         "(PCL's PLY reader misreads other layouts)");
     }
     if (e.count == 0) throw FileError(path, "no points (the header declares 0 vertices)");
+    if (e.count > CurrentReadLimits().max_points)
+      throw FileError(path, "the header declares " + std::to_string(e.count) +
+                                " vertices, more than the limit of " +
+                                std::to_string(CurrentReadLimits().max_points) +
+                                " points (raise it with --max-points)");
     return e;
   }
   throw FileError(path, "no 'element vertex' in the header");
@@ -172,8 +193,9 @@ bool IsNumber(const std::string& token, double* value) {
 }
 
 // One line per element record, each with the declared tokens; coordinates finite.
-void CheckAsciiData(const PlyHeader& h, const std::string& bytes, const std::string& path) {
-  TokenLines lines(bytes, h.data_offset, h.data_line);
+void CheckAsciiData(const PlyHeader& h, InputFile& file) {
+  const std::string& path = file.path();
+  TokenLines lines(&file);
   for (const PlyElement& e : h.elements) {
     const bool vertex = e.name == "vertex";
     for (unsigned long long r = 0; r < e.count; ++r) {
@@ -217,9 +239,9 @@ void CheckAsciiData(const PlyHeader& h, const std::string& bytes, const std::str
 
 // The data size follows from the header up to the first element with list properties (whose
 // size depends on the data): the file must have at least that, and exactly that without lists.
-void CheckBinarySize(const PlyHeader& h, const std::string& bytes, const std::string& path,
-                     const PlyElement& vertex) {
-  const unsigned long long available = bytes.size() - h.data_offset;
+void CheckBinarySize(const PlyHeader& h, const InputFile& file, const PlyElement& vertex) {
+  const std::string& path = file.path();
+  const unsigned long long available = file.size() - std::min<unsigned long long>(h.data_offset, file.size());
   unsigned long long expected = 0;
   bool exact = true;
   for (const PlyElement& e : h.elements) {
@@ -246,13 +268,18 @@ void CheckBinarySize(const PlyHeader& h, const std::string& bytes, const std::st
 }  // namespace
 
 PointCloud ReadPlyFile(const std::string& path, CloudFileInfo* info) {
-  const std::string bytes = ReadTextFile(path);
-  const PlyHeader header = ParseHeader(bytes, path);
+  // Checked while streaming (the file is read once here, then by PCL).
+  PlyHeader header;
+  {
+    InputFile file(path);
+    header = ParseHeader(file);
+    const PlyElement& vertex = VertexElement(header, path);
+    if (header.format == "ascii")
+      CheckAsciiData(header, file);
+    else
+      CheckBinarySize(header, file, vertex);
+  }
   const PlyElement& vertex = VertexElement(header, path);
-  if (header.format == "ascii")
-    CheckAsciiData(header, bytes, path);
-  else
-    CheckBinarySize(header, bytes, path, vertex);
 
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   pcl::PCLPointCloud2 blob;

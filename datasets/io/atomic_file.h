@@ -1,7 +1,16 @@
-// Writes a whole file or nothing: the content goes to "<path>.tmp.<pid>" in the same folder,
-// is flushed, then renamed over <path> (rename is atomic on POSIX filesystems). A failure at
-// any point removes the temporary and throws InputError naming <path>; <path> is never left
-// half-written.
+// Writes a whole file or nothing. The content goes to a temporary in the target's folder
+// (datasets/io/output_path.h: a short per-process name, held under flock while it exists, so a
+// concurrent run never deletes it and the next run removes it if this one is killed), is
+// flushed and fsync'ed, then renamed over the target (atomic on POSIX filesystems). A symbolic
+// link is written through (its target gets the content, the link stays); an existing target
+// keeps its permission bits (and owner, when allowed). "-" writes to standard output. A failure
+// at any point removes the temporary and throws InputError naming the path; the old file is
+// left as it was.
+//
+// OutputTransaction (all or nothing over a whole run): while one is open, every
+// WriteFileAtomically only stages its file (written, flushed, not renamed); Commit() then
+// writes staged standard output and renames every file; a transaction destroyed without
+// Commit (an exception, exit 2) removes every temporary: the run leaves none of its outputs.
 #pragma once
 
 #include <string>
@@ -9,5 +18,18 @@
 namespace implicitfit {
 
 void WriteFileAtomically(const std::string& path, const std::string& content);
+
+class OutputTransaction {
+ public:
+  OutputTransaction();  // at most one at a time per process
+  ~OutputTransaction();
+  OutputTransaction(const OutputTransaction&) = delete;
+  OutputTransaction& operator=(const OutputTransaction&) = delete;
+  // Standard output for "-" outputs (a descriptor the command's own printing does not use:
+  // apps/output_guard.cc moves that to stderr); default 1.
+  void SetStdoutDescriptor(int fd);
+  // Renames every staged file into place (stdout first); throws InputError when one fails.
+  void Commit();
+};
 
 }  // namespace implicitfit

@@ -5,7 +5,10 @@
 #include <sstream>
 
 #include "datasets/io/atomic_file.h"
+#include "datasets/io/input_file.h"
 #include "datasets/io/io_error.h"
+#include "datasets/io/json_file.h"
+#include "datasets/io/read_limits.h"
 #include "datasets/io/text_file.h"
 #include "model/file/model_json.h"
 
@@ -101,15 +104,7 @@ Scene SceneFromJson(const json& d) {
 
 Scene ReadSceneFile(const std::string& path) {
   const std::string text = ReadTextFile(path);
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    const size_t at = what.find("] ");
-    throw FileError(path,
-                    "invalid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
-  }
+  const json document = ParseJsonDocument(text, path);
   try {
     return SceneFromJson(document);
   } catch (const ModelFormatError& e) {
@@ -136,21 +131,25 @@ void WriteSceneFile(const Scene& scene, const std::string& path) {
 }
 
 std::vector<int> ReadLabelsFile(const std::string& path, int num_primitives, long expected_count) {
-  std::istringstream in(ReadTextFile(path));
+  InputFile file(path);  // streamed: a labels file has one line per point
   std::vector<int> labels;
   std::string line;
-  long number = 0;
-  while (std::getline(in, line)) {
-    ++number;
+  while (file.ReadLine(&line, CurrentReadLimits().max_line_bytes)) {
+    const long number = file.line_number();
     std::istringstream fields(line);
     long value = 0;
     std::string rest;
     if (!(fields >> value) || (fields >> rest))
-      throw LineError(path, number, "expected one integer label, found '" + line + "'");
+      throw LineError(path, number,
+                      "expected one integer label, found '" + line.substr(0, 60) + "'");
     if (value < -1 || value >= num_primitives)
       throw LineError(path, number,
                       "label " + std::to_string(value) + " is outside -1.." +
                           std::to_string(num_primitives - 1));
+    if (labels.size() >= CurrentReadLimits().max_points)
+      throw LineError(path, number, "more labels than the limit of " +
+                                        std::to_string(CurrentReadLimits().max_points) +
+                                        " points (raise it with --max-points)");
     labels.push_back(static_cast<int>(value));
   }
   if (expected_count >= 0 && static_cast<long>(labels.size()) != expected_count)

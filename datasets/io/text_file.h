@@ -1,5 +1,7 @@
-// Whole-file reading with the checks every reader needs: the path exists, is a regular file
-// (not a directory) and can be read. Throws InputError naming the file.
+// Whole-file reading of small text files (models, scenes, manifests) with the checks every
+// reader needs: the path exists and is a regular file (datasets/io/input_file.h: no directory,
+// FIFO or device), it can be read, and it is at most CurrentReadLimits().max_text_bytes
+// (datasets/io/read_limits.h). Throws InputError naming the file.
 #pragma once
 
 #include <string>

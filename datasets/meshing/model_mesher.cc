@@ -21,6 +21,7 @@
 #include "datasets/io/atomic_file.h"
 #include "datasets/generators/model_sampler.h"
 #include "datasets/meshing/sharp_features.h"
+#include "model/worker_threads.h"
 
 namespace implicitfit {
 namespace {
@@ -54,10 +55,7 @@ void FillGrid(const Model& model, int num_threads, Grid* grid) {
           grid->values[grid->Index(i, j, k)] = v;
         }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(slab, t);
-  slab(0);
-  for (std::thread& th : pool) th.join();
+  RunWorkers(threads, slab);
 }
 
 // Root of f on the segment a + s (b - a), s in [0, 1], given fa < 0 <= fb or fa >= 0 > fb:
@@ -207,12 +205,7 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
       abs_value[v] = std::isfinite(f) ? std::abs(f) : std::numeric_limits<double>::infinity();
     }
   };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(refine, t);
-    refine(0);
-    for (std::thread& th : pool) th.join();
-  }
+  RunWorkers(threads, refine);
   result.max_abs_value = num_points ? *std::max_element(abs_value.begin(), abs_value.end()) : 0.0;
 
   vtkCellArray* polys = poly->GetPolys();

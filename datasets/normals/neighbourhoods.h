@@ -5,7 +5,10 @@
 //       but at least min_k and at most max_k of them (nearest first).
 // On an evenly sampled surface, radius 2s holds about 4 x 6 = 24 neighbours; sparse regions
 // fall back to min_k, dense ones are capped at max_k. The search runs on coordinates recentred
-// at the centroid, so far-off clouds (UTM, ~1e6) lose no precision.
+// at the centroid, so far-off clouds (UTM, ~1e6) lose no precision. Exact duplicates are
+// searched once (a k-d tree cannot split equal points: 80 000 copies of a point made every
+// query scan them all); each copy then gets its copies first (distance 0), then the copies of
+// the unique neighbours, as a search over all points would.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,6 +27,7 @@ struct Neighbourhoods {
       indices;           // per point, its neighbours (itself excluded), nearest first
   double spacing = 0.0;  // s, the median 6th-neighbour distance
   double radius = 0.0;   // radius_factor * s
+  size_t duplicates = 0;  // points equal to an earlier one (searched once: near-linear time)
 };
 
 // Throws std::invalid_argument when the cloud has fewer than 2 points.

@@ -71,13 +71,17 @@ NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& optio
   }
   const Neighbourhoods nb = FindNeighbourhoods(cloud->points, options.neighbourhood);
   result.mean_neighbours = MeanSize(nb);
+  result.duplicates = nb.duplicates;
+  // Reports say how many points repeat an earlier one (searched once: neighbourhoods.h).
+  const std::string duplicates =
+      nb.duplicates ? " (" + std::to_string(nb.duplicates) + " duplicate points)" : "";
   if (estimate) {
     cloud->normals = EstimatePcaNormals(cloud->points, nb);
     result.estimated = cloud->size();
   } else {
     result.opposed_fraction = OpposedNeighbourFraction(cloud->normals, nb.indices);
     if (result.opposed_fraction <= options.max_opposed_fraction) {
-      result.action = "read from file";
+      result.action = "read from file" + duplicates;
       return result;
     }
   }
@@ -97,6 +101,7 @@ NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& optio
     }
     result.action = prefix + (estimate ? "MST-oriented" : "MST-re-oriented");
   }
+  result.action += duplicates;
   return result;
 }
 

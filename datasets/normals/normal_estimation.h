@@ -42,6 +42,7 @@ struct NormalResult {
   double opposed_fraction = 0.0;  // detector value on the file's normals (0 when estimated)
   double mean_neighbours = 0.0;   // mean neighbourhood size used (0 when nothing was computed)
   size_t visibility_flipped_patches = 0;  // smooth patches the visibility vote reversed
+  size_t duplicates = 0;  // points equal to an earlier one (also appended to `action`)
 };
 
 // Fills cloud->normals when empty (or when options.reestimate), and orients them. Throws

@@ -761,10 +761,33 @@ BernsteinGrid MeshGridForCloud(const std::vector<Vec>& points, int cells, double
   const Vec center = 0.5 * (lo + hi);
   BernsteinGrid g;
   g.cell = cell > 0.0 ? cell : ext.maxCoeff() / (cells > 0 ? cells : 4);
-  for (int a = 0; a < 3; ++a)
-    g.cells[a] = std::max(1, static_cast<int>(std::ceil(ext[a] / g.cell - 1e-9)));
+  for (int a = 0; a < 3; ++a)  // in double: --cell 1e-9 must not overflow to a 1x1x1 grid
+    g.cells[a] = static_cast<int>(std::clamp(std::ceil(ext[a] / g.cell - 1e-9), 1.0, 1e9));
   g.origin = center - 0.5 * g.cell * Vec(g.cells[0], g.cells[1], g.cells[2]);
   return g;
+}
+
+std::string MeshFitSizeProblem(const BernsteinGrid& grid, int degree) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "a patch mesh of %d x %d x %d cubes of degree %d has %.3g distinct control points, "
+                "more than the limit of %.0f (memory and time grow faster than their square: "
+                "12^3 cubes took 2.8 GB); use fewer --cells or a larger --cell",
+                grid.cells[0], grid.cells[1], grid.cells[2], degree,
+                MeshFitControlPoints(grid, degree), kMaxMeshFitControlPoints);
+  return text;
+}
+
+BernsteinGrid MeshFitGrid(const std::vector<Vec>& points, const MeshFitOptions& options) {
+  if (options.has_grid) return options.grid;
+  return MeshGridForCloud(points, options.cells > 0 ? options.cells : (options.convex ? 4 : 8),
+                          options.cell, options.convex ? 0.0 : options.box_margin);
+}
+
+double MeshFitControlPoints(const BernsteinGrid& grid, int degree) {
+  double n = 1.0;
+  for (int a = 0; a < 3; ++a) n *= static_cast<double>(degree) * grid.cells[a] + 1.0;
+  return n;
 }
 
 Model MeshFitResult::ToModel() const {
@@ -798,12 +821,12 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const long long n = NumBernsteinControlPoints(k);
   result.degree = k;
   result.continuity = options.continuity;
-  result.grid =
-      options.has_grid
-          ? options.grid
-          : MeshGridForCloud(points, options.cells > 0 ? options.cells : (options.convex ? 4 : 8),
-                             options.cell, options.convex ? 0.0 : options.box_margin);
+  result.grid = MeshFitGrid(points, options);
   const BernsteinGrid& grid = result.grid;
+  if (MeshFitControlPoints(grid, k) > kMaxMeshFitControlPoints) {
+    result.message = MeshFitSizeProblem(grid, k);
+    return result;
+  }
   result.tetrahedra = grid.NumTetrahedra();
   const double diagonal = (grid.BoxMax() - grid.BoxMin()).norm();
   const double d = 0.01 * diagonal;

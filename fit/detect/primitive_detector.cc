@@ -21,6 +21,7 @@
 #include "fit/detect/surface_noise.h"
 #include "fit/common/thread_count.h"
 #include "model/median.h"
+#include "model/worker_threads.h"
 
 namespace implicitfit {
 namespace {
@@ -106,17 +107,16 @@ std::vector<int> Spread(const std::vector<int>& v, size_t count) {
 // Runs body(i, worker) for i in [0, count) on `threads` threads; worker in [0, threads).
 template <typename Body>
 void ParallelFor(int count, int threads, Body body) {
-  threads = std::max(1, std::min(threads, count));
+  // At most 256 (more cannot be faster on any machine this runs on; huge requests would spend
+  // their time starting threads); RunWorkers copes with the ones the system refuses.
+  threads = std::max(1, std::min({threads, count, 256}));
   if (threads == 1) {
     for (int i = 0; i < count; ++i) body(i, 0);
     return;
   }
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&, t]() {
-      for (int i = t; i < count; i += threads) body(i, t);
-    });
-  for (auto& th : pool) th.join();
+  RunWorkers(threads, [&](int t) {
+    for (int i = t; i < count; i += threads) body(i, t);
+  });
 }
 
 struct Scales {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 
@@ -225,10 +226,9 @@ double LagrangianCurvature(NodeType kind, const std::vector<Eigen::Vector3d>& x,
   return (lagrangian(e) + lagrangian(-e) - 2 * lagrangian(0)) / (e * e * lin.worst);
 }
 
-}  // namespace
-
-MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
-                                 const std::vector<double>& start) {
+// The minimum zone of every point of `points` (the method of the header).
+MinimumZoneResult SolveAll(NodeType kind, const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<double>& start) {
   MinimumZoneResult result;
   if (!(kind == NodeType::kPlane || kind == NodeType::kSphere || kind == NodeType::kCylinder ||
         kind == NodeType::kCone)) {
@@ -346,6 +346,78 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
                 result.outer_contacts, result.inner_contacts);
   result.message = buffer;
   return result;
+}
+
+// The working set of the exchange: the points farthest out and farthest in at theta, and an
+// even spread of the rest (so that the subset determines the primitive).
+std::vector<int> InitialWorkingSet(NodeType kind, const std::vector<Eigen::Vector3d>& points,
+                                   const std::vector<double>& theta, int extremes, int spread) {
+  const int n = static_cast<int>(points.size());
+  std::vector<std::pair<double, int>> d(n);
+  for (int i = 0; i < n; ++i)
+    d[i] = {PrimitiveSignedDistance(kind, theta.data(), points[i].data(), nullptr), i};
+  std::sort(d.begin(), d.end());
+  std::vector<char> in(n, 0);
+  for (int r = 0; r < extremes && r < n; ++r) in[d[r].second] = in[d[n - 1 - r].second] = 1;
+  for (int r = 0; r < spread; ++r) in[static_cast<int>(static_cast<long long>(r) * n / spread)] = 1;
+  std::vector<int> set;
+  for (int i = 0; i < n; ++i)
+    if (in[i]) set.push_back(i);
+  return set;
+}
+
+}  // namespace
+
+// Exchange over working sets: the zone of a subset S is a lower bound of the zone of all
+// points; when every point lies within the subset's zone, its Kuhn-Tucker point (certificate
+// and second-order check, all on active points) is one of the whole problem, whose other
+// points are inactive. Otherwise the points farthest outside join S and the solve restarts
+// from the subset's solution. Each LP then has |S| rows instead of N: 20 000 noisy sphere
+// points took over 100 s in one solve.
+MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
+                                 const std::vector<double>& start, int direct_limit) {
+  constexpr int kExtremes = 250, kSpread = 500, kAdded = 250;
+  const int n = static_cast<int>(points.size());
+  if (n <= direct_limit || n < 4 * (kExtremes + kSpread) / 3) return SolveAll(kind, points, start);
+  std::vector<int> set = InitialWorkingSet(kind, points, start, kExtremes, kSpread);
+  std::vector<double> theta = start;
+  int iterations = 0, exchanges = 0, escapes = 0;
+  for (int round = 0; round < 40 && static_cast<int>(set.size()) < n / 2; ++round) {
+    std::vector<Eigen::Vector3d> subset;
+    subset.reserve(set.size());
+    for (int i : set) subset.push_back(points[i]);
+    MinimumZoneResult r = SolveAll(kind, subset, theta);
+    iterations += r.iterations;
+    exchanges += r.exchanges;
+    escapes += r.escapes;
+    if (r.parameters.empty()) return r;  // the subset does not determine it: an error message
+    theta = r.parameters;
+    const double t = 0.5 * r.zone_width;
+    const double tolerance = 1e-12 * std::max(1.0, t) + 1e-9 * t;
+    std::vector<char> in(n, 0);
+    for (int i : set) in[i] = 1;
+    std::vector<std::pair<double, int>> outside;
+    for (int i = 0; i < n; ++i) {
+      if (in[i]) continue;
+      const double d = std::abs(PrimitiveSignedDistance(kind, theta.data(), points[i].data(), nullptr));
+      if (d > t + tolerance) outside.emplace_back(-d, i);
+    }
+    if (outside.empty()) {  // every point inside the subset's zone: its optimum is the optimum
+      for (int& c : r.contacts) c = set[c];
+      r.figures = ComputeFormFigures(kind, theta, points);
+      r.iterations = iterations;
+      r.exchanges = exchanges;
+      r.escapes = escapes;
+      return r;
+    }
+    std::sort(outside.begin(), outside.end());
+    for (size_t k = 0; k < outside.size() && k < static_cast<size_t>(kAdded); ++k)
+      set.push_back(outside[k].second);
+    std::sort(set.begin(), set.end());
+  }
+  MinimumZoneResult r = SolveAll(kind, points, theta);  // the exchange did not settle
+  r.iterations += iterations;
+  return r;
 }
 
 }  // namespace implicitfit

@@ -3,6 +3,8 @@
 #include <ceres/ceres.h>
 #include <ceres/context.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -223,6 +225,57 @@ std::string FittableKindNames() {
   return names;
 }
 
+namespace {
+
+// Rank check before any fit: a plane needs points not all on one line, the curved kinds points
+// not all in one plane (a circle of points is on infinitely many spheres, cylinders, cones),
+// and every kind at least as many distinct points as it has degrees of freedom. Fixed
+// parameters lower what is needed: then only a non-degenerate set is asked for. The rank is
+// that of the centred points: singular values below 1e-9 of the largest count as zero.
+bool DeterminesPrimitive(const std::vector<Eigen::Vector3d>& points,
+                         const PrimitiveFitOptions& options, std::string* message) {
+  const char* name = NodeTypeName(options.kind);
+  const bool plane = options.kind == NodeType::kPlane;
+  const bool fixed = !options.fixed.empty();
+  const int dof = plane                                 ? 3
+                  : options.kind == NodeType::kSphere   ? 4
+                  : options.kind == NodeType::kCylinder ? 5
+                  : options.kind == NodeType::kCone     ? 6
+                                                        : 7;
+  std::vector<Eigen::Vector3d> sorted = points;
+  std::sort(sorted.begin(), sorted.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  const size_t distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
+  const size_t needed = fixed ? 2 : static_cast<size_t>(dof);
+  if (distinct < needed) {
+    *message = std::to_string(distinct) + " distinct point" + (distinct == 1 ? "" : "s") +
+               " (of " + std::to_string(points.size()) + "): a " + name + " needs at least " +
+               std::to_string(needed);
+    return false;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < distinct; ++i) mean += sorted[i];
+  mean /= static_cast<double>(distinct);
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < distinct; ++i) scatter += (sorted[i] - mean) * (sorted[i] - mean).transpose();
+  const Eigen::Vector3d s = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter)
+                                .eigenvalues()
+                                .cwiseMax(0.0)
+                                .cwiseSqrt();  // ascending singular values
+  int rank = 0;
+  for (int k = 0; k < 3; ++k) rank += s[k] > 1e-9 * s[2];
+  const int needed_rank = fixed ? 1 : plane ? 2 : 3;
+  if (rank < needed_rank) {
+    *message = std::string(rank <= 1 ? "the points are collinear" : "the points are coplanar") +
+               " (rank " + std::to_string(rank) + "): they do not determine a " + name;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
                                 const std::vector<Eigen::Vector3d>& normals,
                                 const PrimitiveFitOptions& options) {
@@ -242,6 +295,7 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     result.message = "normals and points differ in count";
     return result;
   }
+  if (!DeterminesPrimitive(points, options, &result.message)) return result;
   result = Fit(points, normals, options);
   result.kind = options.kind;
   result.points = points.size();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include "fit/common/thread_count.h"
@@ -55,6 +56,24 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   }
   std::vector<double*> block_ptrs;
   for (auto& b : parameters.blocks()) block_ptrs.push_back(b.data());
+  {
+    // Dense QR on (points x residuals) rows and P columns costs rows P^2 per iteration, with
+    // every residual's autodiff over all P: a 4x4x4 partition of planes (P = 256) on 2000
+    // points ran over 90 s. Refused above kMaxTreeFitWork (about a minute) instead.
+    double free = 0;
+    for (int size : parameters.block_sizes()) free += size;
+    const double rows = static_cast<double>(n_points) * (has_normals ? 4 : 1);
+    if (options.max_work > 0 && rows * free * free > options.max_work) {
+      char text[300];
+      std::snprintf(text, sizeof text,
+                    "%.0f free parameters on %zu points: the dense fit would cost %.3g "
+                    "(rows x parameters^2), more than the limit of %.3g (about a minute); fit "
+                    "fewer parameters (a smaller grid, fixed fields) or fewer points",
+                    free, n_points, rows * free * free, options.max_work);
+      result.message = text;
+      return result;
+    }
+  }
 
   auto residual_distances = [&](const std::vector<double>& flat) {
     Model m = initial;
@@ -106,7 +125,7 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   const std::vector<double> d = residual_distances(result.model.parameters());
   double ss = 0, angles = 0;
   for (size_t i = 0; i < n_points; ++i) {
-    if (std::abs(d[i]) >= 3.0 * result.sigma) continue;
+    if (std::abs(d[i]) > 3.0 * result.sigma) continue;  // sigma 0 (exact data): |d| = 0 counts
     ++result.inliers;
     ss += d[i] * d[i];
     if (has_normals) {
@@ -116,8 +135,13 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   }
   result.rms = result.inliers ? std::sqrt(ss / result.inliers) : 0.0;
   if (has_normals && result.inliers) result.mean_normal_angle_deg = angles / result.inliers;
-  result.success = summary.IsSolutionUsable() && summary.termination_type == ceres::CONVERGENCE;
-  result.message = result.success ? "converged" : "solver did not converge: " + summary.message;
+  result.success = summary.IsSolutionUsable() && summary.termination_type == ceres::CONVERGENCE &&
+                   result.inliers > 0;
+  result.message = result.success ? "converged"
+                   : result.inliers == 0 && summary.IsSolutionUsable() &&
+                           summary.termination_type == ceres::CONVERGENCE
+                       ? "no point lies within 3 sigma of the fitted model (0 inliers)"
+                       : "solver did not converge: " + summary.message;
   result.termination = result.success ? FitTermination::kConverged
                        : summary.termination_type == ceres::NO_CONVERGENCE
                            ? FitTermination::kNoConvergence

@@ -19,10 +19,17 @@
 
 namespace implicitfit {
 
+// Largest rows x free parameters^2 (rows: 4 per point with normals, else 1) FitModelTree takes:
+// a 2x2x2 plane partition (32 parameters) on 2000 oriented points, 8.2e6, took 1 s.
+constexpr double kMaxTreeFitWork = 5e8;
+
 struct TreeFitOptions {
   double normal_weight = 0.1;  // w of the normal residuals (units of distance per unit vector)
   int max_iterations = 200;    // Ceres iterations per pass
   int num_threads = 0;         // 0 = hardware concurrency
+  // > 0: refuse (success false, with the figures) a fit whose dense cost rows x free
+  // parameters^2 exceeds it; the command line passes kMaxTreeFitWork.
+  double max_work = 0.0;
   // False (with a reason) for a negative or non-finite weight, fewer than 1 iteration or a
   // negative thread count.
   bool IsValid(std::string* error) const;

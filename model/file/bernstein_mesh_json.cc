@@ -12,7 +12,7 @@ using nlohmann::json;
 // A mesh larger than this many control points is refused (a typo in "cells" should not
 // allocate gigabytes).
 constexpr long long kMaxMeshControlPoints = 200'000'000;
-constexpr long long kMaxMeshDegree = 20;
+constexpr long long kMaxMeshDegree = kMaxPatchDegree;  // model_json.h
 
 [[noreturn]] void Fail(const std::string& where, const std::string& problem) {
   throw ModelFormatError(where + ": " + problem);
@@ -22,6 +22,9 @@ double FiniteNumber(const json& v, const std::string& where) {
   if (!v.is_number()) Fail(where, "must be a number");
   const double x = v.get<double>();
   if (!std::isfinite(x)) Fail(where, "must be finite");
+  if (std::abs(x) > kMaxModelMagnitude)
+    Fail(where, "magnitude " + json(x).dump() + " exceeds " + json(kMaxModelMagnitude).dump() +
+                    " (beyond what the evaluators handle)");
   return x;
 }
 
@@ -53,7 +56,7 @@ int ReadBernsteinMeshNode(const json& node, const std::string& path, const std::
     grid.origin[a] = FiniteNumber(g.at("origin")[a], gp + ".origin[" + std::to_string(a) + "]");
   if (!g.contains("cell")) Fail(gp + ".cell", "missing");
   grid.cell = FiniteNumber(g.at("cell"), gp + ".cell");
-  if (!(grid.cell > 0.0)) Fail(gp + ".cell", "must be > 0");
+  if (!(grid.cell >= kMinModelLength)) Fail(gp + ".cell", "must be >= 1e-12");
   if (!g.contains("cells") || !g.at("cells").is_array() || g.at("cells").size() != 3)
     Fail(gp + ".cells", "must be an array of 3 positive integers");
   long long count = 6 * NumBernsteinControlPoints(k);

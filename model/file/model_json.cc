@@ -16,6 +16,13 @@ using nlohmann::json;
   throw ModelFormatError(path + ": " + problem);
 }
 
+// Magnitudes the evaluators handle (model_json.h: kMaxModelMagnitude).
+void RequireInRange(double x, const std::string& where) {
+  if (std::abs(x) > kMaxModelMagnitude)
+    Fail(where, "magnitude " + json(x).dump() + " exceeds " + json(kMaxModelMagnitude).dump() +
+                    " (beyond what the evaluators handle: its squares and products overflow)");
+}
+
 double Number(const json& node, const std::string& key, const std::string& path) {
   const std::string where = path + "." + key;
   if (!node.contains(key)) Fail(where, "missing");
@@ -23,6 +30,7 @@ double Number(const json& node, const std::string& key, const std::string& path)
   if (!v.is_number()) Fail(where, "must be a number");
   const double x = v.get<double>();
   if (!std::isfinite(x)) Fail(where, "must be finite");
+  RequireInRange(x, where);
   return x;
 }
 
@@ -34,6 +42,7 @@ std::vector<double> Vector(const json& v, size_t size, const std::string& where)
     if (!v[i].is_number()) Fail(where + "[" + std::to_string(i) + "]", "must be a number");
     out.push_back(v[i].get<double>());
     if (!std::isfinite(out.back())) Fail(where + "[" + std::to_string(i) + "]", "must be finite");
+    RequireInRange(out.back(), where + "[" + std::to_string(i) + "]");
   }
   return out;
 }
@@ -54,6 +63,16 @@ void RequireNonZero(const std::vector<double>& v, size_t begin, const std::strin
 
 void RequirePositive(double x, const std::string& where) {
   if (!(x > 0.0)) Fail(where, "must be > 0");
+  if (x < kMinModelLength)
+    Fail(where, "must be >= " + json(kMinModelLength).dump() +
+                    " (smaller lengths make the evaluators divide by zero)");
+}
+
+void RequireAtMostElements(size_t count, const std::string& where, const char* what) {
+  if (static_cast<long long>(count) > kMaxModelElements)
+    Fail(where, std::to_string(count) + " " + what + ", more than the limit of " +
+                    std::to_string(kMaxModelElements) +
+                    " (meshing, sampling and checking cost grows with each)");
 }
 
 void CheckKeys(const json& node, const std::set<std::string>& allowed, const std::string& path) {
@@ -181,7 +200,9 @@ std::vector<double> PrimitiveParameters(NodeType type, const json& node, const s
 }
 
 // bernstein_patch: {"degree": k, "vertices": [[3],[3],[3],[3]], "control_points": [...]}.
-constexpr long long kMaxBernsteinDegree = 100;
+// Degree at most kMaxPatchDegree (model_json.h): an evaluation costs (k+1)(k+2)(k+3)/6 terms
+// or more (286 at 10; a degree-100 patch took hours to mesh).
+constexpr long long kMaxBernsteinDegree = kMaxPatchDegree;
 
 int ReadBernsteinPatch(const json& node, const std::string& path, const std::string& name,
                        Model* model) {
@@ -263,6 +284,7 @@ int ReadBlobs(const json& node, const std::string& path, const std::string& name
     Fail(path + ".centers", "must be a non-empty array of points [x, y, z]");
   const json& c = node.at("centers");
   const size_t m = c.size();
+  RequireAtMostElements(m, path + ".centers", "blobs");
   std::vector<double> centers;
   for (size_t i = 0; i < m; ++i) {
     const std::vector<double> x = Vector(c[i], 3, path + ".centers[" + std::to_string(i) + "]");
@@ -324,6 +346,7 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   else
     Fail(where + "." + key, "unknown skeleton (points, segments, polyline or triangles)");
   const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
+  if (list.is_array()) RequireAtMostElements(list.size(), where + "." + key, "skeleton elements");
   if (!list.is_array() || list.size() < least)
     Fail(where + "." + key, "must be an array of at least " + std::to_string(least) +
                                 (kind == SkeletonKind::kSegments    ? " segment [[3], [3]]"
@@ -453,6 +476,7 @@ std::vector<double> ReadFeatureList(const json& node, const std::string& path) {
     Fail(path + ".features", "must be an array of at least 1 feature object");
   std::vector<double> features;
   const json& list = node.at("features");
+  RequireAtMostElements(list.size(), path + ".features", "features");
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string at = path + ".features[" + std::to_string(i) + "]";
     if (!list[i].is_object()) Fail(at, "must be an object {point, width, depth, radius, flare}");
@@ -526,6 +550,9 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     Fail(ShortPath(path), "the model tree nests deeper than " + std::to_string(kMaxModelDepth) +
                               " levels (the root is level 1)");
   if (!node.is_object()) Fail(path, "must be an object (a model node)");
+  if (static_cast<long long>(model->nodes().size()) >= kMaxModelNodes)
+    Fail(ShortPath(path), "the model has more than " + std::to_string(kMaxModelNodes) +
+                              " nodes, the limit");
   if (!node.contains("type") || !node.at("type").is_string())
     Fail(path + ".type", "missing or not a string");
   const std::string type_name = node.at("type").get<std::string>();

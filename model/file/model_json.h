@@ -23,6 +23,19 @@ namespace implicitfit {
 
 constexpr int kMaxModelDepth = 256;
 
+// What the evaluators handle, and what meshing, sampling and checking a model can do in bounded
+// time (docs/model-file.md, "Limits"), refused at read time with the field's path:
+// every number |x| <= kMaxModelMagnitude (squares overflow from 1.3e154, products of a few
+// magnitudes must stay finite); positive lengths (radii, widths, half sizes, delta, epsilon)
+// >= kMinModelLength; a Bernstein patch or mesh of degree <= kMaxPatchDegree (meshing a
+// degree-10 patch at the default grid: 16 s; degree 20: 3 minutes); at most
+// kMaxModelElements blobs, skeleton elements or features in one node, and kMaxModelNodes nodes.
+constexpr double kMaxModelMagnitude = 1e15;
+constexpr double kMinModelLength = 1e-12;
+constexpr int kMaxPatchDegree = 10;
+constexpr long long kMaxModelElements = 10000;
+constexpr long long kMaxModelNodes = 10000;
+
 class ModelFormatError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

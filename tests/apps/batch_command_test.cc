@@ -312,7 +312,8 @@ TEST_F(BatchCommand, KillDashNineLeavesNoPartialFileAndResumeCompletes) {
     EXPECT_NEAR(model["root"]["radius"].get<double>(), t.radius, 0.005) << t.name;
   }
   for (const auto& e : fs::directory_iterator(out))
-    EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << "stale temporary " << e.path();
+    EXPECT_EQ(e.path().string().find(".implicitfit-"), std::string::npos)
+        << "stale temporary " << e.path();
   const auto again = RunCommand(command + " --resume");
   EXPECT_NE(again.out.find("0 fitted, " + std::to_string(n) + " skipped"), std::string::npos)
       << again.out;

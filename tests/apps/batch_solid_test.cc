@@ -126,7 +126,7 @@ TEST(BatchSolid, ReconstructsEachCloudAndResumes) {
   const std::string first = Slurp(wide_model);
   fs::remove(wide_model);
   WriteText(out + "/tall.report.json", "{\"success\": tr");
-  WriteText(out + "/tall.model.json.tmp.99999", "{");
+  WriteText(out + "/.tall.model.json.implicitfit-99999999-0.tmp", "{");
   auto again = RunCommand(command + " --resume");
   EXPECT_EQ(again.exit_code, 0) << again.out << again.err;
   EXPECT_EQ(Status(out + "/summary.csv", clouds[0]), "ok");
@@ -134,7 +134,7 @@ TEST(BatchSolid, ReconstructsEachCloudAndResumes) {
   EXPECT_EQ(Slurp(wide_model), first) << "same seed, same solid";
   EXPECT_TRUE(json::parse(Slurp(out + "/tall.report.json"))["success"].get<bool>());
   EXPECT_NE(fs::last_write_time(out + "/tall.model.json"), wide_time) << "redone";
-  EXPECT_FALSE(FileExists(out + "/tall.model.json.tmp.99999"));
+  EXPECT_FALSE(FileExists(out + "/.tall.model.json.implicitfit-99999999-0.tmp"));
   // Everything complete now: nothing is redone.
   const auto tall_time = fs::last_write_time(out + "/tall.model.json");
   again = RunCommand(command + " --resume");
