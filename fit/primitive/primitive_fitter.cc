@@ -229,10 +229,11 @@ namespace {
 
 // Rank check before any fit: a plane needs points not all on one line, the curved kinds points
 // not all in one plane (a circle of points is on infinitely many spheres, cylinders, cones),
-// and every kind at least as many distinct points as it has degrees of freedom. Fixed
+// and every kind at least as many distinct points as it has degrees of freedom (one more without
+// normals: the points alone then give the hypotheses, fit/metrology/point_hypotheses.h). Fixed
 // parameters lower what is needed: then only a non-degenerate set is asked for. The rank is
 // that of the centred points: singular values below 1e-9 of the largest count as zero.
-bool DeterminesPrimitive(const std::vector<Eigen::Vector3d>& points,
+bool DeterminesPrimitive(const std::vector<Eigen::Vector3d>& points, bool has_normals,
                          const PrimitiveFitOptions& options, std::string* message) {
   const char* name = NodeTypeName(options.kind);
   const bool plane = options.kind == NodeType::kPlane;
@@ -247,11 +248,11 @@ bool DeterminesPrimitive(const std::vector<Eigen::Vector3d>& points,
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   });
   const size_t distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
-  const size_t needed = fixed ? 2 : static_cast<size_t>(dof);
+  const size_t needed = fixed ? 2 : static_cast<size_t>(dof + (has_normals ? 0 : 1));
   if (distinct < needed) {
     *message = std::to_string(distinct) + " distinct point" + (distinct == 1 ? "" : "s") +
                " (of " + std::to_string(points.size()) + "): a " + name + " needs at least " +
-               std::to_string(needed);
+               std::to_string(needed) + " points";
     return false;
   }
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -295,7 +296,7 @@ PrimitiveFitResult FitPrimitive(const std::vector<Eigen::Vector3d>& points,
     result.message = "normals and points differ in count";
     return result;
   }
-  if (!DeterminesPrimitive(points, options, &result.message)) return result;
+  if (!DeterminesPrimitive(points, !normals.empty(), options, &result.message)) return result;
   result = Fit(points, normals, options);
   result.kind = options.kind;
   result.points = points.size();
