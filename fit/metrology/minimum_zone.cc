@@ -11,10 +11,6 @@
 namespace implicitfit {
 namespace {
 
-// Largest Kuhn-Tucker residual accepted as stationary (scaled gradients: a unit move changes
-// some distance by the half width t, so no direction narrows the zone faster than 1e-6 t per
-// such move).
-constexpr double kKktTolerance = 1e-6;
 
 struct Linearisation {
   Eigen::MatrixXd basis;  // P x k
@@ -231,9 +227,9 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
                                  const std::vector<double>& start) {
   MinimumZoneResult result;
   if (!(kind == NodeType::kPlane || kind == NodeType::kSphere || kind == NodeType::kCylinder ||
-        kind == NodeType::kCone)) {
+        kind == NodeType::kCone || kind == NodeType::kTorus)) {
     result.message =
-        std::string("minimum zone is available for plane, sphere, cylinder and cone, not ") +
+        std::string("minimum zone is available for plane, sphere, cylinder, cone and torus, not ") +
         NodeTypeName(kind);
     return result;
   }
@@ -322,11 +318,15 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   const double h = lin.worst;
   result.kkt_residual = h <= eps ? 0.0 : cert.kkt_residual;
   result.contacts = cert.contacts;
+  for (int c : cert.contacts) {
+    result.contact_points.push_back(points[c]);
+    result.contact_distances.push_back(lin.d[c]);
+  }
   result.sides = cert.sides;
   result.multipliers = cert.multipliers;
   for (int side : cert.sides) (side > 0 ? result.outer_contacts : result.inner_contacts) += 1;
   result.optimality_verified =
-      h <= eps || (result.kkt_residual <= kKktTolerance && result.outer_contacts > 0 &&
+      h <= eps || (result.kkt_residual <= kMinimumZoneKktTolerance && result.outer_contacts > 0 &&
                    result.inner_contacts > 0 && !(result.second_order_curvature < 0));
   if (kind == NodeType::kCylinder) {  // axis point closest to the centroid
     Eigen::Map<Eigen::Vector3d> q(theta.data()), u(theta.data() + 3);

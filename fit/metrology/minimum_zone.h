@@ -46,6 +46,11 @@
 
 namespace implicitfit {
 
+// Largest Kuhn-Tucker residual accepted as stationary (scaled gradients: a unit move changes
+// some distance by the half width t, so no direction narrows the zone faster than 1e-6 t per
+// such move).
+constexpr double kMinimumZoneKktTolerance = 1e-6;
+
 struct MinimumZoneResult {
   bool success = false;
   std::string message;
@@ -53,6 +58,8 @@ struct MinimumZoneResult {
   double zone_width = 0.0;          // 2 t: the minimum-zone form error
   FormFigures figures;              // of the result (form_error = zone_width up to rounding)
   std::vector<int> contacts;        // the reference: indices of the points on the zone's faces
+  std::vector<Eigen::Vector3d> contact_points;  // those points (input frame)
+  std::vector<double> contact_distances;        // their signed distances (+-t up to rounding)
   std::vector<int> sides;           // +1: on the outer face (d = +t), -1: on the inner face
   std::vector<double> multipliers;  // lambda_i of the contacts
   int outer_contacts = 0, inner_contacts = 0;
@@ -67,7 +74,9 @@ struct MinimumZoneResult {
   int escapes = 0;  // restarts from saddle points (negative curvature) that narrowed the zone
 };
 
-// Plane, sphere, cylinder and cone (a torus has no guarantee of the Haar condition here).
+// Plane, sphere, cylinder, cone and torus (the torus' zone: two tori of the same centre, axis and
+// major radius, minor radii r +- t). The method needs no Haar condition: with fewer than k + 1
+// contacts the second-order check and the restarts above decide.
 MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
                                  const std::vector<double>& least_squares_start);
 
