@@ -31,6 +31,13 @@
 // restarts from moves both ways along that direction (0.3, 0.03, 0.003 of a unit) and along
 // every parameter (1 and 0.1 of a unit; a unit move changes some distance by t), keeping the
 // narrowest zone, until no restart narrows it (at most 5 rounds).
+// Exchange search: the problem is not convex, and on near-degenerate sets (a torus probed on its
+// outer side trades R against r along an almost flat valley) the SLP from the least-squares fit
+// can stop in a certified local minimum a hair wider than another one whose contact set differs
+// by one point. With k + 1 contacts, every exchange of one contact for one other point (on
+// either face) is tried: Newton on the new set's levelled equations from the current zone; a
+// solution holding every point and narrower than the current zone is descended from again (at
+// most 10 rounds). `contact_swaps` counts the exchanges that narrowed the zone.
 // Why not p-norm continuation: sum |d_i|^p only approaches max |d_i| as N^(1/p), needs p in the
 // hundreds to reach 1e-12 and is then ill-conditioned; the LP gives the exact active set and its
 // certificate.
@@ -72,6 +79,7 @@ struct MinimumZoneResult {
   // keeping the contacts levelled (relative to t; must not be negative); +inf otherwise.
   double second_order_curvature = INFINITY;
   int escapes = 0;  // restarts from saddle points (negative curvature) that narrowed the zone
+  int contact_swaps = 0;  // exchanges of one contact that narrowed the zone (see above)
 };
 
 // Plane, sphere, cylinder, cone and torus (the torus' zone: two tori of the same centre, axis and
