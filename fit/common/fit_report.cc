@@ -63,6 +63,7 @@ nlohmann::json PrimitiveJson(const PrimitiveFitResult& r, NodeType kind, size_t 
                  {"inner_contacts", r.zone.inner_contacts},
                  {"exchanges", r.zone.exchanges},
                  {"lp_steps", r.zone.iterations},
+                 {"contact_swaps", r.zone.contact_swaps},
                  {"kkt_residual", r.zone.kkt_residual},
                  {"contacts", contacts}};
     // What the optimality claim rests on (fit/metrology/minimum_zone.h).

@@ -3,7 +3,7 @@
 // 120-240 degrees, 1 um lobes, 0.1 um noise, random pose ~100 mm from the origin):
 //  - least squares from points alone against the long double Gauss-Newton reference (from the
 //    truth, in the reference's own parameterisation): every parameter within 1e-9 of the size;
-//  - minimum zone: certified on every set, 2 max |d_i| recomputed here equals the width, the
+//  - minimum zone: certified on every one of 6 sets, 2 max |d_i| recomputed here equals the width, the
 //    width is at most the least-squares form error, and on the small sets it equals the
 //    narrowest levelled zone of the independent enumeration (tests/support/
 //    minimum_zone_reference.h: every 8-subset and sign pattern, long double Newton).
@@ -61,8 +61,12 @@ TEST(TorusMetrology, LeastSquaresFromPointsAloneAgreesWithTheReference) {
 TEST(TorusMetrology, MinimumZoneCertifiedOnEverySetAndEqualToTheEnumeration) {
   int certified = 0, sets = 0, compared = 0;
   double worst_enumeration = 0;
-  for (int n : {9, 10, 20, 40})
-    for (unsigned seed = 1; seed <= 4; ++seed) {
+  // 6 sets (9, 10 and 20 points; 2 seeds each): each minimum-zone step solves its LP in GLPK's
+  // exact rational arithmetic (most of the time here, by perf), 7.2 s of CPU for this file's two tests
+  // measured on the shared machine; the 16 sets of the benchmark
+  // (bench/cmm_comparison --kinds torus --test-sets --zone-reference) are in bench/RESULTS.md.
+  for (int n : {9, 10, 20})
+    for (unsigned seed = 1; seed <= 2; ++seed) {
       const CmmSet s = testsupport::MakeCmmSet(CmmKind::kTorus, n, 900 + 10 * n + seed);
       ++sets;
       const PrimitiveFitResult ls = FitTorus(s, Estimator::kLeastSquares);

@@ -82,12 +82,6 @@ TEST(ColemanFeaturesRecovery, NotesFormOnATriangleSkeletonWithinOnePercent) {
   EXPECT_NEAR(rr, 0.2, 0.002);
 }
 
-}  // namespace
-}  // namespace implicitfit
-
-namespace implicitfit {
-namespace {
-
 // The feature point's free direction (issue 28): f enters Coleman's field only through its
 // closest core point c(f) and the direction u from c(f) to f, neither of which changes when f
 // slides along u, so a solver could drift along it (a fitted point went from 0.7 to 14.6, out
