@@ -12,7 +12,8 @@
 // tests/support/minimum_zone_reference.h (exchange over enumerations of levelled zones in long
 // double: the narrowest levelled zone of a subset that holds every point is the set's minimum
 // zone); its column counts the sets it decided and, of those, the ones where implicitfit's
-// certified width equals it within 1e-12 mm. --test-sets uses the 16 sets per kind of
+// certified width equals it within 1e-12 mm, is narrower (a zone with fewer than k + 1
+// contacts, which no levelled zone represents) or wider (a failure: a narrower zone exists). --test-sets uses the 16 sets per kind of
 // tests/fit/metrology/metrology_test.cc (k + 2, 12, 25, 40 points, seeds 31 n + 1..4) instead
 // of --sizes/--seeds. The torus has no PCL model (its PCL columns are n/a).
 //
@@ -176,7 +177,7 @@ int main(int argc, char** argv) {
       "difference median / max (mm) "
       "| PCL difference median / max (mm) | failures LS / MZ / PCL | MZ width / LS form error "
       "median |%s\n|---|---|---|---|---|---|---|---|---|%s\n",
-      zone_reference ? " MZ = global reference: decided / equal |" : "",
+      zone_reference ? " MZ vs global reference: decided / equal / narrower / wider |" : "",
       zone_reference ? "---|" : "");
   for (const std::string& name : kinds) {
     const CmmKind kind = name == "plane"      ? CmmKind::kPlane
@@ -193,7 +194,7 @@ int main(int argc, char** argv) {
                                                       : kind == CmmKind::kTorus ? 8
                                                                                 : 6);
       std::vector<double> t_ls, t_mz, t_pcl, d_ours, d_pcl, mz_ratio;
-      int fail_ours = 0, fail_mz = 0, fail_pcl = 0, decided = 0, equal = 0;
+      int fail_ours = 0, fail_mz = 0, fail_pcl = 0, decided = 0, equal = 0, narrower = 0, wider = 0;
       const int set_count = test_sets ? 4 : seeds;
       for (int seed = 1; seed <= set_count; ++seed) {
         const CmmSet s =
@@ -221,9 +222,13 @@ int main(int argc, char** argv) {
             ++decided;
             const double diff = mz.zone.zone_width - static_cast<double>(g.width);
             equal += std::abs(diff) <= 1e-12;
+            narrower += diff < -1e-12;
+            wider += diff > 1e-12;
             if (std::abs(diff) > 1e-12)
-              std::fprintf(stderr, "%s n=%d seed=%d: implicitfit %.17g, reference %.17g\n",
-                           name.c_str(), n, seed, mz.zone.zone_width, static_cast<double>(g.width));
+              std::fprintf(stderr,
+                           "%s n=%d seed=%d: implicitfit %.17g (%zu contacts), reference %.17g\n",
+                           name.c_str(), n, seed, mz.zone.zone_width, mz.zone.contacts.size(),
+                           static_cast<double>(g.width));
           } else {
             std::fprintf(stderr, "%s n=%d seed=%d: reference undecided (subset of %d)\n",
                          name.c_str(), n, seed, g.subset_size);
@@ -253,8 +258,10 @@ int main(int argc, char** argv) {
           no_pcl ? "n/a" : std::to_string(fail_pcl).c_str(),
           mz_applies ? Fixed(Median(mz_ratio), "%.3f").c_str() : "n/a");
       if (zone_reference)
-        std::printf(" %s |", mz_applies ? (std::to_string(decided) + " / " +
-                                           std::to_string(equal)).c_str() : "n/a");
+        std::printf(" %s |", mz_applies ? (std::to_string(decided) + " / " + std::to_string(equal) +
+                                           " / " + std::to_string(narrower) + " / " +
+                                           std::to_string(wider)).c_str()
+                                        : "n/a");
       std::printf("\n");
       std::fflush(stdout);
     }
