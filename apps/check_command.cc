@@ -1,12 +1,14 @@
-// implicitfit check MODEL.json... [--json] [--sample N] — the convexity certificate of every
-// Bernstein patch in every file (model/certificates/convexity_certificate.h). Exit 0 when every patch is
-// certified convex, 1 when some is not (or when --sample contradicts a certificate), 2 when a
-// file is unreadable or invalid (all files are read before anything is printed).
+// implicitfit check MODEL.json... [--json] [--sample N] — the convexity verdict of every file
+// (model/certificates/convexity_verdict.h): the tree certificate AND every Bernstein patch's and
+// mesh's certificate. Exit 0 when every file is certified convex, 1 when some is not (or when
+// --sample contradicts a certificate), 2 when a file is unreadable or invalid (all files are
+// read before anything is printed).
 // --json prints {"convex", "files": [{"file", "convex", "patches": [{"degree", "convex",
 // "min_eigenvalue"}]}]} (docs/convexity.md); --sample N adds a "sample" object per patch and a summary.
 // Additive fields (issue #12, model/certificates/convexity_fields.h): per file "tree" and "nodes" (tree
-// certificate), per patch the G-2/G-3/G-4 fields. A file without patches is convex only when its
-// tree is certified (exit 1 otherwise); --patches-only restores the old vacuous verdict.
+// certificate), per patch the G-2/G-3/G-4 fields; per file "verdict" (what the verdict rests on:
+// nodes, certificates, tetrahedra and boxes). --patches-only restores the old verdict (patches
+// and meshes only; a file without them is convex vacuously).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -21,6 +23,7 @@
 #include "datasets/io/model_file.h"
 #include "model/certificates/convexity_fields.h"
 #include "model/certificates/convexity_report.h"
+#include "model/certificates/convexity_verdict.h"
 #include "model/certificates/tangent_plane_test.h"
 
 namespace implicitfit {
@@ -80,6 +83,7 @@ int Run(const CheckOptions& options) {
   std::vector<std::vector<PatchReport>> reports(models.size());
   std::vector<nlohmann::ordered_json> trees(models.size()), tree_verdicts(models.size());
   std::vector<char> tree_certified(models.size(), 0);
+  std::vector<ConvexityVerdict> verdicts(models.size());
   std::vector<std::vector<MeshCheck>> meshes(models.size());  // apps/check_mesh.h
   for (size_t f = 0; f < models.size(); ++f) {
     const Model& model = models[f];
@@ -124,18 +128,17 @@ int Run(const CheckOptions& options) {
     }
     if (reports[f].empty() && meshes[f].empty())
       std::cerr << "implicitfit check: " << options.files[f]
-                << ": no Bernstein patches (nothing to certify)\n";
+                << ": no Bernstein patches (the verdict is the tree certificate's)\n";
     bool certified = false;
     trees[f] = TreeNodesJson(model, &tree_verdicts[f], &certified);
     tree_certified[f] = certified;
-    // A file without patches is judged by its tree certificate (not vacuously convex) unless
-    // --patches-only asks for the old verdict.
-    if (reports[f].empty() && meshes[f].empty() && !options.patches_only) {
-      all_convex &= tree_certified[f];
-      if (!tree_certified[f])
-        std::cerr << "implicitfit check: " << options.files[f]
-                  << ": the model tree is not certified convex\n";
-    }
+    // The file verdict: tree certificate AND every patch's and mesh's (unless --patches-only
+    // asks for the old verdict).
+    verdicts[f] = JudgeConvexity(model, options.patches_only);
+    all_convex &= verdicts[f].convex;
+    if (!verdicts[f].convex)
+      std::cerr << "implicitfit check: " << options.files[f] << ": not certified convex: "
+                << verdicts[f].reason << "\n";
   }
 
   if (options.json) {
@@ -146,10 +149,8 @@ int Run(const CheckOptions& options) {
     for (size_t f = 0; f < models.size(); ++f) {
       ojson file;
       file["file"] = options.files[f];
-      bool convex = true;
       ojson patches = ojson::array();
       for (const PatchReport& r : reports[f]) {
-        convex &= r.certificate.convex;
         ojson p = PatchConvexityJson(r.degree, r.certificate);
         for (auto it = r.extra.begin(); it != r.extra.end(); ++it) p[it.key()] = it.value();
         if (options.sample > 0)
@@ -159,16 +160,12 @@ int Run(const CheckOptions& options) {
         patches.push_back(p);
       }
       ojson mesh_list = ojson::array();
-      for (const MeshCheck& m : meshes[f]) {
-        convex &= m.certificate.convex_on_box;
-        mesh_list.push_back(MeshCheckJson(m));
-      }
-      if (reports[f].empty() && meshes[f].empty() && !options.patches_only)
-        convex = tree_certified[f];
-      file["convex"] = convex;
+      for (const MeshCheck& m : meshes[f]) mesh_list.push_back(MeshCheckJson(m));
+      file["convex"] = verdicts[f].convex;
       file["patches"] = patches;
       file["tree"] = tree_verdicts[f];
       file["nodes"] = trees[f];
+      file["verdict"] = ConvexityVerdictJson(models[f], verdicts[f]);
       if (!meshes[f].empty()) file["meshes"] = mesh_list;
       out["files"].push_back(file);
     }
@@ -197,11 +194,15 @@ int Run(const CheckOptions& options) {
         std::printf("%-24s %-28s tree: %s\n", options.files[f].c_str(), "(no patches)",
                     tree_verdicts[f]["class"].get<std::string>().c_str());
     }
+    for (size_t f = 0; f < models.size(); ++f)
+      std::printf("%-24s verdict: %s\n", options.files[f].c_str(),
+                  verdicts[f].convex ? "certified convex" : ("not certified convex: " +
+                                                             verdicts[f].reason).c_str());
     bool patches_convex = true;
     for (const auto& file_reports : reports)
       for (const PatchReport& r : file_reports) patches_convex &= r.certificate.convex;
-    std::printf("%s\n", all_convex       ? "all patches certified convex"
-                        : patches_convex ? "some model trees are not certified convex"
+    std::printf("%s\n", all_convex       ? "every file certified convex"
+                        : patches_convex ? "some files are not certified convex"
                                          : "some patches are not certified convex");
     if (options.sample > 0)
       std::printf(

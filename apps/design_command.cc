@@ -1,5 +1,5 @@
 // implicitfit design CLOUD --primitive plane|paraboloid --count m [--delta d] [--epsilon e]
-//                   [--order n] --out MODEL.json
+//                   [--order n] [--smoothing li-phillips|convex] --out MODEL.json
 // Li & Phillips' design from oriented points (fit/tree/design_builder.h): m oriented
 // representatives of the cloud, written as the smooth intersection of the enclosing ellipsoid
 // and one plane / paraboloid per representative; `fit --init MODEL.json` refines it.
@@ -40,10 +40,17 @@ CommandAction AddDesignCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--order", a->options.order, "Order n of the unit step H_n (default 3)")
       ->check(CLI::Range(0, 14));
+  cmd->add_option("--smoothing", a->options.smoothing,
+                  "li-phillips (default) or convex: the convexity-preserving smooth max over a "
+                  "box base, certified convex by `check`");
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
   return [a]() {
     if (!IsDesignPrimitive(a->options.primitive))
       throw InputError("--primitive '" + a->options.primitive + "': expected plane or paraboloid");
+    if (!IsDesignSmoothing(a->options.smoothing))
+      throw InputError("--smoothing '" + a->options.smoothing + "': expected li-phillips or convex");
+    if (a->options.smoothing == "convex" && a->options.epsilon > 0)
+      throw InputError("--epsilon: a convex-smoothing blend has no epsilon (its width is --delta)");
     if (a->options.delta > 0 && a->options.epsilon > a->options.delta)
       throw InputError("--epsilon must not exceed --delta");
     std::string normals;

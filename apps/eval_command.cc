@@ -1,10 +1,14 @@
-// implicitfit eval MODEL.json POINTS — prints f at each point, one value per line, %.17g.
+// implicitfit eval MODEL.json POINTS [--clip-to-tetrahedron] — prints f at each point, one value
+// per line, %.17g. --clip-to-tetrahedron evaluates every Bernstein patch as Guo's object
+// S(f) ∩ V (model/file/clip_to_tetrahedron.h): max(f, the face planes of its tetrahedron).
 #include <cstdio>
 #include <string>
 
 #include "apps/command.h"
 #include "datasets/clouds/cloud_file.h"
+#include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
+#include "model/file/clip_to_tetrahedron.h"
 
 namespace implicitfit {
 
@@ -16,8 +20,18 @@ CommandAction AddEvalCommand(CLI::App& app) {
   cmd->add_option("POINTS", *points_path,
                   "Points (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals ignored)")
       ->required();
-  return [model_path, points_path]() {
-    const Model model = ReadModelFile(*model_path);
+  auto clip = std::make_shared<bool>(false);
+  cmd->add_flag("--clip-to-tetrahedron", *clip,
+                "Evaluate each Bernstein patch within its tetrahedron only: max(f, the "
+                "tetrahedron's face planes), Guo's object S(f) ∩ V");
+  return [model_path, points_path, clip]() {
+    Model model = ReadModelFile(*model_path);
+    if (*clip) {
+      int clipped = 0;
+      model = ClipPatchesToTetrahedra(model, &clipped);
+      if (clipped == 0)
+        throw InputError(*model_path + ": --clip-to-tetrahedron: the model has no bernstein_patch");
+    }
     const PointCloud cloud = ReadCloudFile(*points_path);
     std::string out;
     out.reserve(cloud.size() * 24);

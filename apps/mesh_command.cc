@@ -1,5 +1,8 @@
 // implicitfit mesh MODEL.json --out MESH.ply [--box xmin,ymin,zmin,xmax,ymax,zmax] [--cell h]
+//                 [--clip-to-tetrahedron]
 // A triangle mesh of the model's zero set with normals from grad f (datasets/meshing/model_mesher.h).
+// --clip-to-tetrahedron meshes every Bernstein patch as Guo's object S(f) ∩ V, the solid within
+// its tetrahedron (model/file/clip_to_tetrahedron.h): a closed surface along V's faces.
 #include <cmath>
 #include <iostream>
 
@@ -7,6 +10,7 @@
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
 #include "datasets/meshing/model_mesher.h"
+#include "model/file/clip_to_tetrahedron.h"
 
 namespace implicitfit {
 
@@ -25,10 +29,19 @@ CommandAction AddMeshCommand(CLI::App& app) {
       ->expected(6);
   cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100)")
       ->check(CLI::PositiveNumber);
-  return [model_path, out, box, cell]() {
+  auto clip = std::make_shared<bool>(false);
+  cmd->add_flag("--clip-to-tetrahedron", *clip,
+                "Mesh each Bernstein patch within its tetrahedron only (Guo's object S(f) ∩ V)");
+  return [model_path, out, box, cell, clip]() {
     if (*out != "-" && (out->size() < 4 || out->substr(out->size() - 4) != ".ply"))
       throw InputError(*out + ": unsupported output format (use .ply, or - for stdout)");
-    const Model model = ReadModelFile(*model_path);
+    Model model = ReadModelFile(*model_path);
+    if (*clip) {
+      int clipped = 0;
+      model = ClipPatchesToTetrahedra(model, &clipped);
+      if (clipped == 0)
+        throw InputError(*model_path + ": --clip-to-tetrahedron: the model has no bernstein_patch");
+    }
     MeshOptions options;
     options.cell = *cell;
     if (box->size() == 6) {

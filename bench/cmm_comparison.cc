@@ -8,8 +8,17 @@
 // fit, the median and largest geometric difference to the reference (mm; angles times the
 // part size), failures (least squares, minimum zone not certified, PCL nothing found or > 1 mm
 // off).
+// --zone-reference adds, per minimum-zone set, the independent GLOBAL reference of
+// tests/support/minimum_zone_reference.h (exchange over enumerations of levelled zones in long
+// double: the narrowest levelled zone of a subset that holds every point is the set's minimum
+// zone); its column counts the sets it decided and, of those, the ones where implicitfit's
+// certified width equals it within 1e-12 mm, is narrower (a zone with fewer than k + 1
+// contacts, which no levelled zone represents) or wider (a failure: a narrower zone exists). --test-sets uses the 16 sets per kind of
+// tests/fit/metrology/metrology_test.cc (k + 2, 12, 25, 40 points, seeds 31 n + 1..4) instead
+// of --sizes/--seeds. The torus has no PCL model (its PCL columns are n/a).
 //
-// Usage: cmm_comparison [--sizes 6,10,20,40] [--seeds 20] [--kinds plane,sphere,cylinder,cone]
+// Usage: cmm_comparison [--sizes 6,10,20,40] [--seeds 20]
+//                       [--kinds plane,sphere,cylinder,cone,torus] [--zone-reference] [--test-sets]
 #include <pcl/ModelCoefficients.h>
 #include <pcl/features/normal_3d.h>
 #include <pcl/point_types.h>
@@ -28,6 +37,7 @@
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/metrology/primitive_tangent.h"
 #include "support/cmm_reference.h"
+#include "support/minimum_zone_reference.h"
 
 namespace {
 
@@ -43,6 +53,8 @@ NodeType KindOf(CmmKind k) {
       return NodeType::kSphere;
     case CmmKind::kCylinder:
       return NodeType::kCylinder;
+    case CmmKind::kTorus:
+      return NodeType::kTorus;
     default:
       return NodeType::kCone;
   }
@@ -132,16 +144,30 @@ int main(int argc, char** argv) {
   std::vector<std::string> sizes = {"6", "10", "20", "40"},
                            kinds = {"plane", "sphere", "cylinder", "cone"};
   int seeds = 20;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool zone_reference = false, test_sets = false;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--zone-reference")) {
+      zone_reference = true;
+      continue;
+    }
+    if (!std::strcmp(argv[i], "--test-sets")) {
+      test_sets = true;
+      continue;
+    }
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "%s: %s needs a value\n", argv[0], argv[i]);
+      return 2;
+    }
     if (!std::strcmp(argv[i], "--sizes"))
-      sizes = Split(argv[i + 1]);
+      sizes = Split(argv[++i]);
     else if (!std::strcmp(argv[i], "--kinds"))
-      kinds = Split(argv[i + 1]);
+      kinds = Split(argv[++i]);
     else if (!std::strcmp(argv[i], "--seeds"))
-      seeds = std::atoi(argv[i + 1]);
+      seeds = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr,
-                   "usage: %s [--sizes N,N] [--seeds S] [--kinds plane,sphere,cylinder,cone]\n",
+                   "usage: %s [--sizes N,N] [--seeds S] [--kinds plane,sphere,cylinder,cone,torus] "
+                   "[--zone-reference] [--test-sets]\n",
                    argv[0]);
       return 2;
     }
@@ -150,19 +176,29 @@ int main(int argc, char** argv) {
       "| kind | points | implicitfit LS ms | implicitfit MZ ms | PCL ms | implicitfit LS "
       "difference median / max (mm) "
       "| PCL difference median / max (mm) | failures LS / MZ / PCL | MZ width / LS form error "
-      "median |\n|---|---|---|---|---|---|---|---|---|\n");
+      "median |%s\n|---|---|---|---|---|---|---|---|---|%s\n",
+      zone_reference ? " MZ vs global reference: decided / equal / narrower / wider |" : "",
+      zone_reference ? "---|" : "");
   for (const std::string& name : kinds) {
     const CmmKind kind = name == "plane"      ? CmmKind::kPlane
                          : name == "sphere"   ? CmmKind::kSphere
                          : name == "cylinder" ? CmmKind::kCylinder
+                         : name == "torus"    ? CmmKind::kTorus
                                               : CmmKind::kCone;
     const NodeType nk = KindOf(kind);
-    for (const std::string& size : sizes) {
-      const int n = std::max(std::atoi(size.c_str()), kind == CmmKind::kCone ? 7 : 6);
+    const int k = FreeParameterCount(nk);
+    std::vector<std::string> kind_sizes = sizes;
+    if (test_sets) kind_sizes = {std::to_string(k + 2), "12", "25", "40"};
+    for (const std::string& size : kind_sizes) {
+      const int n = std::max(std::atoi(size.c_str()), kind == CmmKind::kCone    ? 7
+                                                      : kind == CmmKind::kTorus ? 8
+                                                                                : 6);
       std::vector<double> t_ls, t_mz, t_pcl, d_ours, d_pcl, mz_ratio;
-      int fail_ours = 0, fail_mz = 0, fail_pcl = 0;
-      for (int seed = 1; seed <= seeds; ++seed) {
-        const CmmSet s = testsupport::MakeCmmSet(kind, n, 1000 * n + seed);
+      int fail_ours = 0, fail_mz = 0, fail_pcl = 0, decided = 0, equal = 0, narrower = 0, wider = 0;
+      const int set_count = test_sets ? 4 : seeds;
+      for (int seed = 1; seed <= set_count; ++seed) {
+        const CmmSet s =
+            testsupport::MakeCmmSet(kind, n, test_sets ? 31 * n + seed : 1000 * n + seed);
         const auto ref = testsupport::CmmReference(s).Solve();
         PrimitiveFitOptions o;
         o.kind = nk;
@@ -177,9 +213,27 @@ int main(int argc, char** argv) {
         const PrimitiveFitResult mz = FitPrimitive(s.points, {}, o);
         t_mz.push_back(1e3 * Seconds(start));
         start = std::chrono::steady_clock::now();
-        const std::vector<double> pcl = RunPcl(s);
+        const std::vector<double> pcl = kind == CmmKind::kTorus ? std::vector<double>() : RunPcl(s);
         t_pcl.push_back(1e3 * Seconds(start));
         if (!mz.success) ++fail_mz;
+        if (zone_reference && mz.success && n >= k + 2) {
+          const auto g = testsupport::MinimumZoneBySubsetExchange(s);
+          if (g.decided) {
+            ++decided;
+            const double diff = mz.zone.zone_width - static_cast<double>(g.width);
+            equal += std::abs(diff) <= 1e-12;
+            narrower += diff < -1e-12;
+            wider += diff > 1e-12;
+            if (std::abs(diff) > 1e-12)
+              std::fprintf(stderr,
+                           "%s n=%d seed=%d: implicitfit %.17g (%zu contacts), reference %.17g\n",
+                           name.c_str(), n, seed, mz.zone.zone_width, mz.zone.contacts.size(),
+                           static_cast<double>(g.width));
+          } else {
+            std::fprintf(stderr, "%s n=%d seed=%d: reference undecided (subset of %d)\n",
+                         name.c_str(), n, seed, g.subset_size);
+          }
+        }
         if (mz.success && ls.success) mz_ratio.push_back(mz.zone.zone_width / ls.form.form_error);
         if (ls.success)
           d_ours.push_back(Largest(testsupport::ParameterDifferences(s, ls.parameters, ref)));
@@ -193,13 +247,22 @@ int main(int argc, char** argv) {
           ++fail_pcl;  // nothing found, or more than 1 mm off
       }
       // Minimum zone needs k + 2 points: below that its column says n/a.
-      const bool mz_applies = n >= FreeParameterCount(nk) + 2;
+      const bool mz_applies = n >= k + 2;
+      const bool no_pcl = kind == CmmKind::kTorus;
       std::printf(
-          "| %s | %d | %.2f | %s | %.2f | %.2g / %.2g | %.2g / %.2g | %d / %s / %d | %s |\n",
+          "| %s | %d | %.2f | %s | %s | %.2g / %.2g | %s | %d / %s / %s | %s |",
           name.c_str(), n, Median(t_ls), mz_applies ? Fixed(Median(t_mz)).c_str() : "n/a",
-          Median(t_pcl), Median(d_ours), Max(d_ours), Median(d_pcl), Max(d_pcl), fail_ours,
-          mz_applies ? std::to_string(fail_mz).c_str() : "n/a", fail_pcl,
+          no_pcl ? "n/a" : Fixed(Median(t_pcl)).c_str(), Median(d_ours), Max(d_ours),
+          no_pcl ? "n/a" : (Fixed(Median(d_pcl), "%.2g") + " / " + Fixed(Max(d_pcl), "%.2g")).c_str(),
+          fail_ours, mz_applies ? std::to_string(fail_mz).c_str() : "n/a",
+          no_pcl ? "n/a" : std::to_string(fail_pcl).c_str(),
           mz_applies ? Fixed(Median(mz_ratio), "%.3f").c_str() : "n/a");
+      if (zone_reference)
+        std::printf(" %s |", mz_applies ? (std::to_string(decided) + " / " + std::to_string(equal) +
+                                           " / " + std::to_string(narrower) + " / " +
+                                           std::to_string(wider)).c_str()
+                                        : "n/a");
+      std::printf("\n");
       std::fflush(stdout);
     }
   }

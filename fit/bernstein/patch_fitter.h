@@ -10,19 +10,15 @@
 // 2. Ceres refinement of r_0 = f / |grad f| (first-order geometric distance) and the normal term
 //    w (grad f / |grad f| - n) (signed: grad f follows the normals' orientation), grad f analytic
 //    (de Casteljau), Cauchy loss at 3 sigma of the initial fit.
-// 3. --convex, every A^mu of docs/design.md positive definite with the margin
-//    lambda_min(A^mu) >= 1e-6 max|b| (scale-invariant):
-//    degree 2: exact parameterisation A = L L^T + m I (L lower triangular, 6 numbers) plus the
-//      four free control points b_1004..b_0002 (the rest follow from A), so every iterate is
-//      convex;
-//    degree >= 3 (the A^mu share control points, no such parameterisation): an interior method
-//      by step rejection, started from the convex degree-2 fit elevated to degree k (elevation
-//      keeps the certificate: the new A^mu are convex combinations of the old). A guard residual
-//      block returns false for any iterate whose smallest A^mu eigenvalue is below the margin;
-//      Ceres then rejects the step and shrinks the trust region, so every accepted iterate is
-//      certified. Cost: one extra eigenvalue evaluation of (k-1)k(k+1)/6 3x3 matrices per step.
-//    The result is verified with CertifyConvexity; if it fails, the fit fails (never a
-//    non-convex result under --convex).
+// 3. --convex (fit/bernstein/convex_patch_fit.h): every A^mu of docs/design.md positive definite
+//    with the margin lambda_min(A^mu) >= 1e-6 max|b| of the WRITTEN patch (scale-invariant),
+//    at the optimum of a stated objective: several certified starts (the least-squares plane,
+//    the unconstrained fit projected onto the convex set, its barycentric clamp), the loss
+//    scale from the best start's misfit, the scale of b normalised (unit sphere), the lowest
+//    cost kept; degree 2 by an exact parameterisation (every iterate certified), degree >= 3
+//    and shape constraints by step rejection from a certified start. The result is verified
+//    with CertifyConvexity and the margin; if either fails, the fit fails (never a non-convex
+//    result under --convex).
 #pragma once
 
 #include <Eigen/Core>
@@ -44,10 +40,10 @@ struct PatchFitOptions {
   Tetrahedron tetrahedron;
   double normal_weight = 0.1;  // w of the normal residuals
   int max_iterations = 200;
-  // Guo §3 shape control (fit/bernstein/patch_shape_constraints.h): exact linear equalities, not
-  // combined with `convex` (IsValid refuses the pair).
+  // Guo §3 shape control (fit/bernstein/patch_shape_constraints.h): exact linear equalities,
+  // also with `convex` (a subspace of the convex fit), except through an edge.
   PatchShapeConstraints constraints;
-  // False (with a reason) for a degree outside 2..4, shape constraints with `convex`,
+  // False (with a reason) for a degree outside 2..4, a through-edge constraint with `convex`,
   // conflicting constraints, a negative or non-finite weight or fewer than 1 iteration.
   bool IsValid(std::string* error) const;
 };
@@ -67,6 +63,9 @@ struct PatchFitResult : FitSummary {
   double unconstrained_rms = -1.0;    // --convex: RMS of the same fit without the constraint
   double min_eigenvalue = 0.0;        // certificate margin (smallest A^mu eigenvalue)
   bool certified_convex = false;
+  double relative_margin = 0.0;       // --convex: min_eigenvalue / max |b| (>= 1e-6 required)
+  std::string convex_start;           // --convex: the degree-2 start that won (plane, project,
+                                      // clamp)
   Model ToModel() const;
   // "points N  rms ...  certified convex ...  s" (one line).
   std::string BriefReport() const;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "fit/bernstein/convex_patch_fit.h"
+
 namespace implicitfit {
 
 namespace {
@@ -44,18 +46,36 @@ nlohmann::json PrimitiveJson(const PrimitiveFitResult& r, NodeType kind, size_t 
   if (r.estimator == Estimator::kLeastSquares) j["final_step"] = r.final_step;
   if (r.estimator == Estimator::kMinimumZone) {
     nlohmann::json contacts = nlohmann::json::array();
-    for (size_t c = 0; c < r.zone.contacts.size(); ++c)
-      contacts.push_back({{"index", r.zone.contacts[c]},
-                          {"side", r.zone.sides[c] > 0 ? "outer" : "inner"},
-                          {"multiplier", r.zone.multipliers[c]}});
+    for (size_t c = 0; c < r.zone.contacts.size(); ++c) {
+      nlohmann::json contact = {{"index", r.zone.contacts[c]},
+                                {"side", r.zone.sides[c] > 0 ? "outer" : "inner"},
+                                {"multiplier", r.zone.multipliers[c]}};
+      if (c < r.zone.contact_points.size()) {
+        const Eigen::Vector3d& x = r.zone.contact_points[c];
+        contact["point"] = {x.x(), x.y(), x.z()};
+        contact["distance"] = r.zone.contact_distances[c];
+      }
+      contacts.push_back(contact);
+    }
     j["zone"] = {{"width", r.zone.zone_width},
                  {"optimality_verified", r.zone.optimality_verified},
                  {"outer_contacts", r.zone.outer_contacts},
                  {"inner_contacts", r.zone.inner_contacts},
                  {"exchanges", r.zone.exchanges},
                  {"lp_steps", r.zone.iterations},
+                 {"contact_swaps", r.zone.contact_swaps},
                  {"kkt_residual", r.zone.kkt_residual},
                  {"contacts", contacts}};
+    // What the optimality claim rests on (fit/metrology/minimum_zone.h).
+    j["zone"]["certificate"] = {
+        {"conditions", "first-order Kuhn-Tucker of min t s.t. |d_i| <= t (multipliers by an exact LP)"},
+        {"kkt_residual", r.zone.kkt_residual},
+        {"kkt_tolerance", kMinimumZoneKktTolerance},
+        {"contacts_on_both_faces", r.zone.outer_contacts > 0 && r.zone.inner_contacts > 0},
+        {"second_order", std::isfinite(r.zone.second_order_curvature)
+                             ? nlohmann::json(r.zone.second_order_curvature >= 0)
+                             : nlohmann::json("not needed (k + 1 contacts)")},
+        {"verified", r.zone.optimality_verified}};
     if (std::isfinite(r.zone.second_order_curvature))
       j["zone"]["second_order_curvature"] = r.zone.second_order_curvature;
   }
@@ -104,7 +124,14 @@ nlohmann::json PatchJson(const PatchFitResult& r, int degree, bool convex, size_
                            {"min_eigenvalue", r.min_eigenvalue},
                            {"seconds", r.seconds},
                            {"normals", normals}};
-  if (convex) report["unconstrained_rms_distance"] = r.unconstrained_rms;
+  if (convex) {
+    report["unconstrained_rms_distance"] = r.unconstrained_rms;
+    // The certificate's margin relative to the written control points, and the bound it meets.
+    report["margin"] = {{"relative", r.relative_margin},
+                        {"required", kConvexRelativeMargin},
+                        {"met", r.relative_margin >= kConvexRelativeMargin}};
+    report["convex_start"] = r.convex_start;
+  }
   report["termination"] =
       FitTerminationName(r.termination);  // CONVERGENCE, NO_CONVERGENCE, FAILURE
   return report;
@@ -145,7 +172,8 @@ std::string PatchFitResult::BriefReport() const {
   std::string s = Format(
       "points %zu  rms %.6g  normal angle %.3g deg  certified convex %s (min eigenvalue %.3g)",
       points, rms, mean_normal_angle_deg, certified_convex ? "yes" : "no", min_eigenvalue);
-  if (convex_constraint) s += Format("  unconstrained rms %.6g", unconstrained_rms);
+  if (convex_constraint)
+    s += Format("  relative margin %.3g  unconstrained rms %.6g", relative_margin, unconstrained_rms);
   return s + Format("  %.3f s", seconds);
 }
 

@@ -12,10 +12,6 @@
 namespace implicitfit {
 namespace {
 
-// Largest Kuhn-Tucker residual accepted as stationary (scaled gradients: a unit move changes
-// some distance by the half width t, so no direction narrows the zone faster than 1e-6 t per
-// such move).
-constexpr double kKktTolerance = 1e-6;
 
 struct Linearisation {
   Eigen::MatrixXd basis;  // P x k
@@ -226,14 +222,102 @@ double LagrangianCurvature(NodeType kind, const std::vector<Eigen::Vector3d>& x,
   return (lagrangian(e) + lagrangian(-e) - 2 * lagrangian(0)) / (e * e * lin.worst);
 }
 
+// SLP, polish, certificate; with fewer than k + 1 contacts, the second-order check and the
+// restarts (see the header). Returns "" or the error.
+std::string Descend(NodeType kind, const std::vector<Eigen::Vector3d>& x, double eps,
+                    std::vector<double>* theta, Linearisation* lin, Certificate* cert,
+                    MinimumZoneResult* result) {
+  for (int escape = 0;; ++escape) {
+    const std::string error = RunSlp(kind, x, eps, theta, lin, result);
+    if (!error.empty()) return error;
+    Polish(kind, x, eps, theta, lin);
+    if (lin->worst <= eps) break;
+    *cert = Certify(*lin);
+    if (!cert->error.empty()) return cert->error;
+    result->second_order_curvature = INFINITY;
+    Eigen::VectorXd descent;
+    for (int j = 0; j < cert->null_directions.cols(); ++j) {
+      const Eigen::VectorXd v = cert->null_directions.col(j).normalized();
+      const double curvature = LagrangianCurvature(kind, x, *theta, *lin, *cert, v);
+      if (curvature < result->second_order_curvature) {
+        result->second_order_curvature = curvature;
+        descent = v;
+      }
+    }
+    if (descent.size() == 0 || escape >= 5) break;
+    std::vector<double> best_theta = *theta;
+    Linearisation best = *lin;
+    const int k = static_cast<int>(lin->g.cols());
+    std::vector<Eigen::VectorXd> moves;
+    for (double s : {0.3, 0.03, 0.003}) {
+      moves.push_back(s * descent);
+      moves.push_back(-s * descent);
+    }
+    for (int j = 0; j < k; ++j)  // and along every parameter, for a nearby narrower minimum
+      for (double s : {1.0, -1.0, 0.1, -0.1}) moves.push_back(s * Eigen::VectorXd::Unit(k, j));
+    for (const Eigen::VectorXd& move : moves) {
+      std::vector<double> q = *theta;
+      Retract(kind, lin->basis, lin->worst * move.cwiseQuotient(cert->column_scale), &q);
+      Linearisation l = Linearise(kind, q, x);
+      if (!RunSlp(kind, x, eps, &q, &l, result).empty()) continue;
+      if (l.worst < best.worst) {
+        best_theta = q;
+        best = l;
+      }
+    }
+    if (!(best.worst < lin->worst)) break;  // no narrower zone nearby: keep this point
+    ++result->escapes;
+    *theta = best_theta;
+    *lin = std::move(best);
+  }
+  return "";
+}
+
+// One exchange of the contact set (see the header): for every contact i and every other point j
+// on either face, Newton on the levelled equations of the set with j in place of i, from theta;
+// a solution that holds every point within its zone and is narrower than the current one is
+// the move. Returns false when there is none (or the contacts are not k + 1).
+bool NarrowerByExchange(NodeType kind, const std::vector<Eigen::Vector3d>& x,
+                        const Certificate& cert, double eps, std::vector<double>* theta,
+                        Linearisation* lin) {
+  const int n = static_cast<int>(x.size()), k = static_cast<int>(lin->g.cols());
+  if (static_cast<int>(cert.contacts.size()) != k + 1) return false;
+  double best = lin->worst * (1 - 1e-13);
+  std::vector<double> best_theta;
+  for (int j = 0; j < n; ++j) {
+    if (std::find(cert.contacts.begin(), cert.contacts.end(), j) != cert.contacts.end()) continue;
+    for (int i = 0; i <= k; ++i)
+      for (int side : {1, -1}) {
+        std::vector<int> S = cert.contacts, sigma = cert.sides;
+        S[i] = j;
+        sigma[i] = side;
+        std::vector<double> q = *theta;
+        if (!PolishLevelled(kind, x, S, sigma, eps, &q)) continue;
+        const Linearisation l = Linearise(kind, q, x);
+        double level = 0;
+        for (int s : S) level = std::max(level, std::abs(l.d[s]));
+        bool levelled = true;
+        for (int s : S) levelled = levelled && std::abs(std::abs(l.d[s]) - level) <= 1e-9 * level;
+        if (levelled && l.worst <= level * (1 + 1e-12) && l.worst < best) {
+          best = l.worst;
+          best_theta = q;
+        }
+      }
+  }
+  if (best_theta.empty()) return false;
+  *theta = best_theta;
+  *lin = Linearise(kind, *theta, x);
+  return true;
+}
+
 // The minimum zone of every point of `points` (the method of the header).
 MinimumZoneResult SolveAll(NodeType kind, const std::vector<Eigen::Vector3d>& points,
                            const std::vector<double>& start) {
   MinimumZoneResult result;
   if (!(kind == NodeType::kPlane || kind == NodeType::kSphere || kind == NodeType::kCylinder ||
-        kind == NodeType::kCone)) {
+        kind == NodeType::kCone || kind == NodeType::kTorus)) {
     result.message =
-        std::string("minimum zone is available for plane, sphere, cylinder and cone, not ") +
+        std::string("minimum zone is available for plane, sphere, cylinder, cone and torus, not ") +
         NodeTypeName(kind);
     return result;
   }
@@ -267,66 +351,31 @@ MinimumZoneResult SolveAll(NodeType kind, const std::vector<Eigen::Vector3d>& po
     }
   }
   const std::string failed = "minimum zone: ";
-  // SLP, polish, certificate; with fewer than k + 1 contacts, the second-order check and the
-  // restarts (see the header).
+  // SLP, polish, certificate, second-order escapes (Descend); then the exchange search for a
+  // narrower levelled zone one contact away, and again from there (see the header).
   Certificate cert;
-  for (int escape = 0;; ++escape) {
-    const std::string error = RunSlp(kind, x, eps, &theta, &lin, &result);
+  for (int round = 0;; ++round) {
+    const std::string error = Descend(kind, x, eps, &theta, &lin, &cert, &result);
     if (!error.empty()) {
       result.message = failed + error;
       return result;
     }
-    Polish(kind, x, eps, &theta, &lin);
-    if (lin.worst <= eps) break;
-    cert = Certify(lin);
-    if (!cert.error.empty()) {
-      result.message = failed + cert.error;
-      return result;
-    }
-    result.second_order_curvature = INFINITY;
-    Eigen::VectorXd descent;
-    for (int j = 0; j < cert.null_directions.cols(); ++j) {
-      const Eigen::VectorXd v = cert.null_directions.col(j).normalized();
-      const double curvature = LagrangianCurvature(kind, x, theta, lin, cert, v);
-      if (curvature < result.second_order_curvature) {
-        result.second_order_curvature = curvature;
-        descent = v;
-      }
-    }
-    if (descent.size() == 0 || escape >= 5) break;
-    std::vector<double> best_theta = theta;
-    Linearisation best = lin;
-    const int k = static_cast<int>(lin.g.cols());
-    std::vector<Eigen::VectorXd> moves;
-    for (double s : {0.3, 0.03, 0.003}) {
-      moves.push_back(s * descent);
-      moves.push_back(-s * descent);
-    }
-    for (int j = 0; j < k; ++j)  // and along every parameter, for a nearby narrower minimum
-      for (double s : {1.0, -1.0, 0.1, -0.1}) moves.push_back(s * Eigen::VectorXd::Unit(k, j));
-    for (const Eigen::VectorXd& move : moves) {
-      std::vector<double> q = theta;
-      Retract(kind, lin.basis, lin.worst * move.cwiseQuotient(cert.column_scale), &q);
-      Linearisation l = Linearise(kind, q, x);
-      if (!RunSlp(kind, x, eps, &q, &l, &result).empty()) continue;
-      if (l.worst < best.worst) {
-        best_theta = q;
-        best = l;
-      }
-    }
-    if (!(best.worst < lin.worst)) break;  // no narrower zone nearby: keep this point
-    ++result.escapes;
-    theta = best_theta;
-    lin = std::move(best);
+    if (lin.worst <= eps || round >= 10) break;
+    if (!NarrowerByExchange(kind, x, cert, eps, &theta, &lin)) break;
+    ++result.contact_swaps;
   }
   const double h = lin.worst;
   result.kkt_residual = h <= eps ? 0.0 : cert.kkt_residual;
   result.contacts = cert.contacts;
+  for (int c : cert.contacts) {
+    result.contact_points.push_back(points[c]);
+    result.contact_distances.push_back(lin.d[c]);
+  }
   result.sides = cert.sides;
   result.multipliers = cert.multipliers;
   for (int side : cert.sides) (side > 0 ? result.outer_contacts : result.inner_contacts) += 1;
   result.optimality_verified =
-      h <= eps || (result.kkt_residual <= kKktTolerance && result.outer_contacts > 0 &&
+      h <= eps || (result.kkt_residual <= kMinimumZoneKktTolerance && result.outer_contacts > 0 &&
                    result.inner_contacts > 0 && !(result.second_order_curvature < 0));
   if (kind == NodeType::kCylinder) {  // axis point closest to the centroid
     Eigen::Map<Eigen::Vector3d> q(theta.data()), u(theta.data() + 3);
@@ -381,7 +430,7 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
   if (n <= direct_limit || n < 4 * (kExtremes + kSpread) / 3) return SolveAll(kind, points, start);
   std::vector<int> set = InitialWorkingSet(kind, points, start, kExtremes, kSpread);
   std::vector<double> theta = start;
-  int iterations = 0, exchanges = 0, escapes = 0;
+  int iterations = 0, exchanges = 0, escapes = 0, swaps = 0;
   for (int round = 0; round < 40 && static_cast<int>(set.size()) < n / 2; ++round) {
     std::vector<Eigen::Vector3d> subset;
     subset.reserve(set.size());
@@ -390,6 +439,7 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
     iterations += r.iterations;
     exchanges += r.exchanges;
     escapes += r.escapes;
+    swaps += r.contact_swaps;
     if (r.parameters.empty()) return r;  // the subset does not determine it: an error message
     theta = r.parameters;
     const double t = 0.5 * r.zone_width;
@@ -408,6 +458,7 @@ MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3
       r.iterations = iterations;
       r.exchanges = exchanges;
       r.escapes = escapes;
+      r.contact_swaps = swaps;
       return r;
     }
     std::sort(outside.begin(), outside.end());

@@ -31,6 +31,13 @@
 // restarts from moves both ways along that direction (0.3, 0.03, 0.003 of a unit) and along
 // every parameter (1 and 0.1 of a unit; a unit move changes some distance by t), keeping the
 // narrowest zone, until no restart narrows it (at most 5 rounds).
+// Exchange search: the problem is not convex, and on near-degenerate sets (a torus probed on its
+// outer side trades R against r along an almost flat valley) the SLP from the least-squares fit
+// can stop in a certified local minimum a hair wider than another one whose contact set differs
+// by one point. With k + 1 contacts, every exchange of one contact for one other point (on
+// either face) is tried: Newton on the new set's levelled equations from the current zone; a
+// solution holding every point and narrower than the current zone is descended from again (at
+// most 10 rounds). `contact_swaps` counts the exchanges that narrowed the zone.
 // Why not p-norm continuation: sum |d_i|^p only approaches max |d_i| as N^(1/p), needs p in the
 // hundreds to reach 1e-12 and is then ill-conditioned; the LP gives the exact active set and its
 // certificate.
@@ -46,6 +53,11 @@
 
 namespace implicitfit {
 
+// Largest Kuhn-Tucker residual accepted as stationary (scaled gradients: a unit move changes
+// some distance by the half width t, so no direction narrows the zone faster than 1e-6 t per
+// such move).
+constexpr double kMinimumZoneKktTolerance = 1e-6;
+
 struct MinimumZoneResult {
   bool success = false;
   std::string message;
@@ -53,6 +65,8 @@ struct MinimumZoneResult {
   double zone_width = 0.0;          // 2 t: the minimum-zone form error
   FormFigures figures;              // of the result (form_error = zone_width up to rounding)
   std::vector<int> contacts;        // the reference: indices of the points on the zone's faces
+  std::vector<Eigen::Vector3d> contact_points;  // those points (input frame)
+  std::vector<double> contact_distances;        // their signed distances (+-t up to rounding)
   std::vector<int> sides;           // +1: on the outer face (d = +t), -1: on the inner face
   std::vector<double> multipliers;  // lambda_i of the contacts
   int outer_contacts = 0, inner_contacts = 0;
@@ -65,12 +79,14 @@ struct MinimumZoneResult {
   // keeping the contacts levelled (relative to t; must not be negative); +inf otherwise.
   double second_order_curvature = INFINITY;
   int escapes = 0;  // restarts from saddle points (negative curvature) that narrowed the zone
+  int contact_swaps = 0;  // exchanges of one contact that narrowed the zone (see above)
 };
 
-// Plane, sphere, cylinder and cone (a torus has no guarantee of the Haar condition here).
-// Above `direct_limit` points the LPs run on working sets (the exchange of minimum_zone.cc: the
-// same optimum, certified on the whole cloud; 20 000 noisy sphere points took over 100 s in
-// one LP, 0.9 s by the exchange).
+// Plane, sphere, cylinder, cone and torus (the torus' zone: two tori of the same centre, axis and
+// major radius, minor radii r +- t). The method needs no Haar condition: with fewer than k + 1
+// contacts the second-order check and the restarts above decide. Above `direct_limit` points the
+// LPs run on working sets (the exchange of minimum_zone.cc: the same optimum, certified on the
+// whole cloud; 20 000 noisy sphere points took over 100 s in one LP, 0.9 s by the exchange).
 MinimumZoneResult MinimumZoneFit(NodeType kind, const std::vector<Eigen::Vector3d>& points,
                                  const std::vector<double>& least_squares_start,
                                  int direct_limit = 1500);

@@ -121,11 +121,53 @@ double ConeForDirection(const Vec3 p[6], const Vec3& u_in, std::vector<double>* 
   return SumSquaredDistances(NodeType::kCone, *params, p, 6);
 }
 
+// Torus for one axis direction u (see the header): the axis point a is the Kasa circle centre
+// of the points projected on the plane orthogonal to u (the parallels of a torus project onto
+// circles about the axis), or the projections' centroid when that fits better; then the profile
+// in (rho, h) = (distance to the axis, height) is a circle, linear in (R, h0, K):
+//   rho^2 + h^2 = 2 R rho + 2 h0 h + K,   r^2 = K + R^2 + h0^2.
+double TorusForDirection(const Vec3* p, int n, const Vec3& u, std::vector<double>* params) {
+  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  Eigen::MatrixXd A(n, 3);
+  Eigen::VectorXd b(n);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (int i = 0; i < n; ++i) {
+    const double s = p[i].dot(e1), t = p[i].dot(e2);
+    A.row(i) << 2 * s, 2 * t, 1.0;
+    b[i] = s * s + t * t;
+    mean += Eigen::Vector2d(s, t) / n;
+  }
+  const Eigen::Vector3d z = A.colPivHouseholderQr().solve(b);
+  double best = INFINITY;
+  for (const Eigen::Vector2d& a : {Eigen::Vector2d(z[0], z[1]), mean}) {
+    Eigen::MatrixXd P(n, 3);
+    Eigen::VectorXd q(n);
+    for (int i = 0; i < n; ++i) {
+      const double s = p[i].dot(e1) - a[0], t = p[i].dot(e2) - a[1], h = p[i].dot(u);
+      const double rho = std::sqrt(s * s + t * t);
+      P.row(i) << 2 * rho, 2 * h, 1.0;
+      q[i] = rho * rho + h * h;
+    }
+    const Eigen::Vector3d w = P.colPivHouseholderQr().solve(q);
+    const double R = w[0], h0 = w[1], r2 = w[2] + R * R + h0 * h0;
+    if (!(R > 0) || !(r2 > 0) || !std::isfinite(r2) || std::sqrt(r2) >= R) continue;
+    const Vec3 c = a[0] * e1 + a[1] * e2 + h0 * u;
+    std::vector<double> h = {c.x(), c.y(), c.z(), u.x(), u.y(), u.z(), R, std::sqrt(r2)};
+    const double cost = SumSquaredDistances(NodeType::kTorus, h, p, n);
+    if (cost < best) {
+      best = cost;
+      *params = h;
+    }
+  }
+  return best;
+}
+
 // The sample's best primitive over the direction grid: the kStarts best directions at least
 // 10 degrees apart are each refined by Gauss-Newton on the K distances; the lowest wins (one
 // start can land in another solution of the K-point problem).
-template <int K, typename Build>
-bool FromDirectionGrid(NodeType kind, const Vec3* p, Build build, std::vector<double>* params) {
+template <typename Build>
+bool FromDirectionGrid(NodeType kind, const Vec3* p, int K, Build build,
+                       std::vector<double>* params) {
   constexpr int kStarts = 6;
   const std::vector<Vec3>& grid = DirectionGrid();
   std::vector<std::pair<double, int>> ranked;
@@ -203,11 +245,26 @@ bool SphereFromPoints(const Vec3 p[4], std::vector<double>* params) {
 }
 
 bool CylinderFromPoints(const Vec3 p[5], std::vector<double>* params) {
-  return FromDirectionGrid<5>(NodeType::kCylinder, p, CylinderForDirection, params);
+  return FromDirectionGrid(NodeType::kCylinder, p, 5, CylinderForDirection, params);
 }
 
 bool ConeFromPoints(const Vec3 p[6], std::vector<double>* params) {
-  return FromDirectionGrid<6>(NodeType::kCone, p, ConeForDirection, params);
+  return FromDirectionGrid(NodeType::kCone, p, 6, ConeForDirection, params);
+}
+
+bool TorusFromPoints(const Vec3* p, int n, std::vector<double>* params) {
+  if (n < 7) return false;
+  return FromDirectionGrid(
+      NodeType::kTorus, p, n,
+      [n](const Vec3* q, const Vec3& u, std::vector<double>* h) {
+        return TorusForDirection(q, n, u, h);
+      },
+      params);
+}
+
+int PointSampleSize(NodeType kind, int points) {
+  const int k = FreeParameterCount(kind);
+  return kind == NodeType::kTorus ? std::min(points, k + 3) : k;
 }
 
 std::string PointSetDegeneracy(NodeType kind, const std::vector<Vec3>& points) {
@@ -217,7 +274,6 @@ std::string PointSetDegeneracy(NodeType kind, const std::vector<Vec3>& points) {
     return "too few points: a " + name + " has " + std::to_string(k) +
            " free parameters, so at least " + std::to_string(k + 1) +
            " points are needed; the cloud has " + std::to_string(points.size());
-  if (kind == NodeType::kTorus) return "";
   Vec3 mean = Vec3::Zero();
   for (const Vec3& x : points) mean += x;
   mean /= static_cast<double>(points.size());
@@ -238,15 +294,16 @@ PointHypothesisSearch BestPointHypothesis(
     const std::function<void(std::vector<double>*)>& constrain) {
   PointHypothesisSearch search;
   constexpr int kMinValid = 4;
-  const int n = static_cast<int>(points.size()), k = FreeParameterCount(kind);
-  if (kind == NodeType::kTorus || n < k) return search;
+  const int n = static_cast<int>(points.size());
+  if (n < FreeParameterCount(kind)) return search;
+  const int k = PointSampleSize(kind, n);
   search.enumerated = Binomial(n, k) <= budget;
   std::vector<int> idx(k);
   std::iota(idx.begin(), idx.end(), 0);
   std::uniform_int_distribution<int> pick(0, n - 1);
   double best_cost = INFINITY;
   std::vector<double> h;
-  Vec3 sample[6];
+  std::vector<Vec3> sample(k);
   for (int t = 0; t < budget; ++t) {
     if (search.enumerated) {
       if (t > 0 && !NextCombination(&idx, n)) break;
@@ -261,16 +318,19 @@ PointHypothesisSearch BestPointHypothesis(
     bool ok = false;
     switch (kind) {
       case NodeType::kPlane:
-        ok = PlaneFromPoints(sample, &h);
+        ok = PlaneFromPoints(sample.data(), &h);
         break;
       case NodeType::kSphere:
-        ok = SphereFromPoints(sample, &h);
+        ok = SphereFromPoints(sample.data(), &h);
         break;
       case NodeType::kCylinder:
-        ok = CylinderFromPoints(sample, &h);
+        ok = CylinderFromPoints(sample.data(), &h);
         break;
       case NodeType::kCone:
-        ok = ConeFromPoints(sample, &h);
+        ok = ConeFromPoints(sample.data(), &h);
+        break;
+      case NodeType::kTorus:
+        ok = TorusFromPoints(sample.data(), k, &h);
         break;
       default:
         break;

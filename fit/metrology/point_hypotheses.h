@@ -11,9 +11,15 @@
 //            linear in (s = a . u, c = cos^2 alpha, v = c a, k = c |a|^2 - s^2):
 //            (x . u)^2 = 2 s (x . u) + c |x|^2 - 2 v . x + k, a 6x6 solve; u from the grid as
 //            for the cylinder, then Gauss-Newton on the 6 distances
-//   torus    not from points alone (a 7-point torus has no practical closed form): refused
-// The search tries every k-subset when there are at most `budget` of them, else `budget`
-// random ones; a hypothesis is scored by its support (points with |d| < tau), ties broken by
+//   torus    10 points (k + 3; all of them when fewer): no practical closed form through 7, so
+//            for every axis direction u of the grid the axis point is the Kasa centre of the
+//            points projected orthogonally to u (parallels project onto circles about the
+//            axis; or their centroid, whichever fits better) and the profile in (distance to
+//            the axis, height) is a circle, linear in (R, h0, r^2 - R^2 - h0^2); the 6 best
+//            directions refined by Levenberg-Marquardt on the sample's distances (7 free
+//            parameters)
+// The search tries every subset (k points, the torus' sample size above) when there are at
+// most `budget` of them, else `budget` random ones; a hypothesis is scored by its support (points with |d| < tau), ties broken by
 // the truncated squared distances (MSAC). It stops early once the best hypothesis is supported
 // by every point (nothing can beat its support) and at least 4 valid hypotheses competed on
 // the cost: on a clean CMM set that is after the first few subsets (the robust and
@@ -34,10 +40,13 @@ bool PlaneFromPoints(const Eigen::Vector3d p[3], std::vector<double>* params);
 bool SphereFromPoints(const Eigen::Vector3d p[4], std::vector<double>* params);
 bool CylinderFromPoints(const Eigen::Vector3d p[5], std::vector<double>* params);
 bool ConeFromPoints(const Eigen::Vector3d p[6], std::vector<double>* params);
+bool TorusFromPoints(const Eigen::Vector3d* p, int count, std::vector<double>* params);
+// Points per hypothesis: the free parameter count, or for a torus min(points, 10).
+int PointSampleSize(NodeType kind, int points);
 
 // "" when the points can determine the kind; else why not (too few points: the kind's free
 // parameter count plus one are needed; collinear points for a plane; coplanar points for a
-// sphere, cylinder, cone or torus; a torus from points alone).
+// sphere, cylinder, cone or torus).
 std::string PointSetDegeneracy(NodeType kind, const std::vector<Eigen::Vector3d>& points);
 
 struct PointHypothesisSearch {

@@ -52,7 +52,7 @@ inline const std::vector<FittablePrimitive>& FittablePrimitives() {
        [](const Vec3* p, const Vec3* n, std::vector<double>* h) {
          return TorusFromSample({p, p + 7}, {n, n + 7}, h);
        },
-       false},
+       true},
   };
   return kinds;
 }

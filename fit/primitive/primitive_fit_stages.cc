@@ -182,7 +182,7 @@ HypothesisSearchResult FindHypothesis(const RecentredCloud& cloud,
     result.tried = search.tried;
     if (result.parameters.empty())
       result.message = "no valid hypothesis from " + std::to_string(search.tried) + " subsets of " +
-                       std::to_string(FreeParameterCount(kind)) +
+                       std::to_string(PointSampleSize(kind, static_cast<int>(n))) +
                        " points (degenerate data for a " + NodeTypeName(kind) + "?)";
     return result;
   }

@@ -1,6 +1,7 @@
 #include "fit/tree/design_builder.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,6 +17,10 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 bool IsDesignPrimitive(const std::string& primitive) {
   return primitive == "plane" || primitive == "paraboloid";
+}
+
+bool IsDesignSmoothing(const std::string& smoothing) {
+  return smoothing == "li-phillips" || smoothing == "convex";
 }
 
 std::vector<OrientedRepresentative> PickRepresentatives(const std::vector<Vec>& points,
@@ -115,25 +120,50 @@ std::vector<double> EnclosingEllipsoid(const std::vector<Vec>& points) {
           e1.x(),   e1.y(),   e1.z(),   e2.x(), e2.y(), e2.z()};
 }
 
+std::vector<double> EnclosingBox(const std::vector<Vec>& points) {
+  Vec mean = Vec::Zero();
+  for (const Vec& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec& p : points) cov += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Matrix3d axes = eig.eigenvectors();
+  if (axes.determinant() < 0) axes.col(2) = -axes.col(2);  // a rotation
+  Vec reach = Vec::Zero();
+  for (const Vec& p : points) reach = reach.cwiseMax((axes.transpose() * (p - mean)).cwiseAbs());
+  const double floor = 1e-6 * std::max(reach.maxCoeff(), 1e-300);
+  const Vec h = 1.25 * reach.cwiseMax(floor);
+  const Eigen::Quaterniond q(axes);
+  return {mean.x(), mean.y(), mean.z(), q.w(), q.x(), q.y(), q.z(), h.x(), h.y(), h.z()};
+}
+
 Model DesignModel(const std::vector<OrientedRepresentative>& representatives,
-                  const std::vector<double>& base_ellipsoid, const DesignOptions& options) {
+                  const std::vector<double>& base, const DesignOptions& options) {
   if (!IsDesignPrimitive(options.primitive))
     throw std::invalid_argument("the design primitive must be plane or paraboloid, not '" +
                                 options.primitive + "'");
-  if (!(options.delta > 0) || !(options.epsilon > 0) || options.epsilon > options.delta)
+  if (!IsDesignSmoothing(options.smoothing))
+    throw std::invalid_argument("the design smoothing must be li-phillips or convex, not '" +
+                                options.smoothing + "'");
+  const bool convex = options.smoothing == "convex";
+  if (!(options.delta > 0) || (!convex && (!(options.epsilon > 0) || options.epsilon > options.delta)))
     throw std::invalid_argument("need 0 < epsilon <= delta");
   Model m;
-  std::vector<int> children = {m.AddPrimitive(NodeType::kEllipsoid, base_ellipsoid, "base")};
+  std::vector<int> children = {
+      m.AddPrimitive(convex ? NodeType::kBox : NodeType::kEllipsoid, base, "base")};
   for (const OrientedRepresentative& r : representatives) {
     const Vec n = r.normal.normalized();
     if (options.primitive == "plane")
       children.push_back(m.AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), n.dot(r.point)}));
     else
       children.push_back(m.AddPrimitive(
-          NodeType::kParaboloid,
-          {r.point.x(), r.point.y(), r.point.z(), n.x(), n.y(), n.z(), r.curvature}));
+          NodeType::kParaboloid, {r.point.x(), r.point.y(), r.point.z(), n.x(), n.y(), n.z(),
+                                  convex ? std::max(r.curvature, 0.0) : r.curvature}));
   }
-  m.AddOperator(NodeType::kIntersection, children, options.delta, options.epsilon, options.order);
+  // A convex blend's epsilon slot is unused (kept equal to delta, model/model.h).
+  const int op = m.AddOperator(NodeType::kIntersection, children, options.delta,
+                               convex ? options.delta : options.epsilon, options.order);
+  if (convex) m.mutable_nodes()[op].smoothing = BlendSmoothing::kConvex;
   return m;
 }
 
@@ -151,7 +181,9 @@ Model DesignFromOrientedPoints(const std::vector<Vec>& points, const std::vector
   if (options.epsilon <= 0) options.epsilon = 0.5 * options.delta;
   const std::vector<OrientedRepresentative> reps =
       PickRepresentatives(points, normals, options.count, options.primitive == "paraboloid");
-  return DesignModel(reps, EnclosingEllipsoid(points), options);
+  return DesignModel(
+      reps, options.smoothing == "convex" ? EnclosingBox(points) : EnclosingEllipsoid(points),
+      options);
 }
 
 }  // namespace implicitfit

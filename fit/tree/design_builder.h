@@ -12,6 +12,16 @@
 //      1.25 the largest Mahalanobis radius of the points), so it encloses every point and the
 //      shapes decide the surface. shape = plane through P with normal n, or the paraboloid of
 //      vertex P, axis n and curvature kappa.
+//   Smoothing "convex" (`design --smoothing convex`, docs/maths.md LP-4 b): the children are
+//      folded with the convexity-preserving S^c_max of width w = delta instead, the base is the
+//      BOX of the covariance axes (exact signed distance, a convex function; half sizes 1.25
+//      the largest extent of the points along each axis around their mean, so it too encloses
+//      every point) and a paraboloid's curvature is clamped to kappa >= 0 (a concave cap is not
+//      convex). Every leaf is then a convex function and S^c_max of convex functions is convex,
+//      so the whole tree is certified convex (model/certificates/tree_certificate.h): Li &
+//      Phillips' convex shape from lines, with a certificate. Their own S_max is neither convex
+//      nor monotone, and the ellipsoid's first-order distance is not a convex function, so the
+//      default design can never be certified.
 //   3. `fit --init` refines it (fit/tree/tree_fitter.h).
 // At a representative P_j farther than delta + epsilon (in function value) from every other
 // child, the smooth max is exact: f(P_j) = 0 and grad f is parallel to n_j.
@@ -36,7 +46,10 @@ struct DesignOptions {
   double delta = 0.0;               // 0: 2% of the bounding-box diagonal
   double epsilon = 0.0;             // 0: delta / 2
   int order = 3;
+  std::string smoothing = "li-phillips";  // li-phillips | convex (see above)
 };
+
+bool IsDesignSmoothing(const std::string& smoothing);
 
 bool IsDesignPrimitive(const std::string& primitive);
 
@@ -47,10 +60,14 @@ std::vector<OrientedRepresentative> PickRepresentatives(const std::vector<Eigen:
 
 // The enclosing ellipsoid (12 parameters of model/primitives/ellipsoid.h) of step 2.
 std::vector<double> EnclosingEllipsoid(const std::vector<Eigen::Vector3d>& points);
+// The enclosing box of the covariance axes (10 parameters of model/primitives/box.h), the base
+// of a convex-smoothing design.
+std::vector<double> EnclosingBox(const std::vector<Eigen::Vector3d>& points);
 
-// Step 2 from given representatives and base ellipsoid parameters.
+// Step 2 from given representatives and base parameters (an ellipsoid's 12, or with smoothing
+// "convex" a box's 10).
 Model DesignModel(const std::vector<OrientedRepresentative>& representatives,
-                  const std::vector<double>& base_ellipsoid, const DesignOptions& options);
+                  const std::vector<double>& base, const DesignOptions& options);
 
 // Steps 1-2 (delta / epsilon defaults resolved from the cloud). Throws std::invalid_argument
 // for invalid options.

@@ -1,9 +1,13 @@
 #include "fit/tree/tree_parameters.h"
 
+#include "fit/bernstein/patch_shape_constraints.h"
+
 #include <ceres/manifold.h>
 #include <ceres/sphere_manifold.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace implicitfit {
@@ -29,6 +33,53 @@ TreeParameters::Kind KindOfRole(FieldRole role) {
       return Kind::kPlain;
   }
   return Kind::kPlain;
+}
+
+// The features block's subspace (see the header): per feature the point moves in the plane
+// orthogonal to u_f, width, depth, radius and flare freely. u_f: for coleman_features the
+// normalised gradient of the core child at f (central differences, as the evaluator's closest
+// core point), for skeleton features the direction from the nearest skeleton point to f.
+Eigen::MatrixXd FeatureTangentBasis(const Model& model, const ModelNode& node, int first) {
+  const std::vector<double>& p = model.parameters();
+  const int m = (node.type == NodeType::kColemanFeatures) ? node.count : SkeletonFeatureCount(node);
+  const int n = ColemanFeatures::kPerFeature * m;
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(n, n - m);
+  int column = 0;
+  for (int q = 0; q < m; ++q) {
+    const double* f = p.data() + first + ColemanFeatures::kPerFeature * q;
+    Eigen::Vector3d u = Eigen::Vector3d::Zero();
+    if (node.type == NodeType::kColemanFeatures) {
+      const double h = 1e-6 * std::max({1.0, std::abs(f[0]), std::abs(f[1]), std::abs(f[2])});
+      for (int k = 0; k < 3; ++k) {
+        double a[3] = {f[0], f[1], f[2]}, b[3] = {f[0], f[1], f[2]};
+        a[k] += h;
+        b[k] -= h;
+        u[k] = model.EvaluateNode(node.children[0], p.data(), a) -
+               model.EvaluateNode(node.children[0], p.data(), b);
+      }
+    } else {
+      double nearest[3];
+      SkeletonOffsetEvaluator::Closest(static_cast<SkeletonKind>(node.variant), node.count,
+                              p.data() + node.first_parameter, f, nearest);
+      u = Eigen::Vector3d(f[0] - nearest[0], f[1] - nearest[1], f[2] - nearest[2]);
+    }
+    const int row = ColemanFeatures::kPerFeature * q;
+    if (u.norm() > 0) {  // the point in the plane orthogonal to u
+      u.normalize();
+      const Eigen::Vector3d a = u.unitOrthogonal(), b = u.cross(a);
+      basis.block<3, 1>(row, column) = a;
+      basis.block<3, 1>(row, column + 1) = b;
+      column += 2;
+    } else {  // no direction (f on the core's ridge): the point moves freely
+      basis.conservativeResize(n, basis.cols() + 1);
+      basis.col(basis.cols() - 1).setZero();
+      for (int k = 0; k < 3; ++k) basis(row + k, column + k) = 1.0;
+      column += 3;
+    }
+    for (int k = 3; k < ColemanFeatures::kPerFeature; ++k) basis(row + k, column++) = 1.0;
+  }
+  basis.conservativeResize(n, column);
+  return basis;
 }
 
 }  // namespace
@@ -96,6 +147,9 @@ TreeParameters::TreeParameters(const Model& model) {
         for (double v : init) n += v * v;
         for (double& v : init) v /= std::sqrt(n);
       }
+      if (name == "features" && (node.type == NodeType::kColemanFeatures ||
+                                 node.type == NodeType::kSkeletonOffset))
+        kind = Kind::kFeatureTangent;
       const int block = static_cast<int>(blocks_.size());
       for (int j = 0; j < field.size; ++j) {
         entries_[k + j].block = block;
@@ -107,6 +161,8 @@ TreeParameters::TreeParameters(const Model& model) {
       blocks_.push_back(init);
       block_sizes_.push_back(field.size);
       block_kinds_.push_back(kind);
+      block_bases_.push_back(kind == Kind::kFeatureTangent ? FeatureTangentBasis(model, node, k)
+                                                           : Eigen::MatrixXd());
       k += field.size;
     }
   }
@@ -125,6 +181,9 @@ void TreeParameters::Configure(ceres::Problem* problem) {
         break;
       case Kind::kPositive:
         for (int j = 0; j < block_sizes_[b]; ++j) problem->SetParameterLowerBound(block, j, 1e-12);
+        break;
+      case Kind::kFeatureTangent:
+        problem->SetManifold(block, NewLinearSubspaceManifold(block_bases_[b]));
         break;
       case Kind::kAngle:
         problem->SetParameterLowerBound(block, 0, 1e-6);

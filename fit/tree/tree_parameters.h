@@ -25,10 +25,21 @@
 //   everything else (centres, offsets,
 //   control points, coefficients)       free
 //   delta of a "smoothing": "convex" blend  delta = exp(a) (its epsilon slot is unused, no block)
+//   Coleman feature points (coleman_features "features", skeleton_offset "features")
+//                                       f moves only orthogonally to u_f, the unit direction
+//                                       from its closest core point c(f) to f at the start (a
+//                                       linear subspace manifold on the features block): f
+//                                       enters the field only through c(f) and u_f, which do
+//                                       not change when f slides along u_f (exactly for a
+//                                       planar, spherical or skeleton core), so that direction
+//                                       is free and a solver can drift along it (a fitted point
+//                                       went from 0.7 to 14.6, out of its falloff region)
 // Fields named in a node's "fixed" list get no block: they keep their value.
 #pragma once
 
 #include <ceres/ceres.h>
+
+#include <Eigen/Core>
 
 #include <cmath>
 #include <vector>
@@ -67,7 +78,8 @@ class TreeParameters {
     kEpsilonLogit,
     kQuaternion,
     kUnitLogit,
-    kLog
+    kLog,
+    kFeatureTangent
   };
 
  private:
@@ -82,6 +94,7 @@ class TreeParameters {
   std::vector<std::vector<double>> blocks_;
   std::vector<int> block_sizes_;
   std::vector<Kind> block_kinds_;
+  std::vector<Eigen::MatrixXd> block_bases_;  // kFeatureTangent: the subspace basis
 };
 
 template <typename T>

@@ -17,6 +17,9 @@
 // exactly -t or t. Order 0 is the sharp |t| and max. Templated on the scalar (Ceres Jets, Dual3);
 // w is a parameter like delta of the Li-Phillips blend.
 //
+// S^c_max is evaluated as max(x, y) + (S^c_abs(t) - |t|) / 2 with t = x - y (the same function,
+// since (x + y) / 2 = max - |t| / 2): exactly max(x, y) for |t| >= w, and inside the band the
+// correction comes from t alone, so the smaller argument is never lost to cancellation.
 // CSG in the project sign (f < 0 inside): union = -S^c_max(-a, -b), intersection = S^c_max(a, b),
 // difference = S^c_max(a, -b).
 #pragma once
@@ -74,8 +77,11 @@ T ConvexSmoothAbs(const T& t, const T& w, int order) {
 
 template <typename T>
 T ConvexSmoothMax(const T& x, const T& y, const T& w, int order) {
-  if (order == 0) return ValueOf(x) >= ValueOf(y) ? x : y;
-  return 0.5 * (x + y + ConvexSmoothAbs(T(x - y), w, order));
+  const bool x_larger = ValueOf(x) >= ValueOf(y);
+  const T t = x - y;
+  if (order == 0 || std::abs(ValueOf(t)) >= ValueOf(w)) return x_larger ? x : y;
+  const T abs_t = x_larger ? t : T(-t);
+  return (x_larger ? x : y) + 0.5 * (ConvexSmoothAbs(t, w, order) - abs_t);
 }
 
 template <typename T>

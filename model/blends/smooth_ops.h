@@ -11,6 +11,14 @@
 //   intersection(a, b) =  S_max(a, b)
 //   difference(a, b)   =  S_max(a, -b)    (a minus b)
 // Order n = 0 is the sharp operator: S_abs = |t|, S_max = max.
+//
+// Evaluation without cancellation. (x + y + S_abs(x - y)) / 2 loses the smaller argument when
+// |x| >> |y| (x = -1e17, y = -1 gives 0 instead of -1). Since (x + y) / 2 = max(x, y) - |t| / 2
+// with t = x - y, the same function is
+//   S_max(x, y) = max(x, y) + (S_abs(t) - |t|) / 2,
+// exactly max(x, y) outside the band |t| >= delta + eps (where S_abs(t) = |t|), and inside it
+// the correction is computed from t alone (|t| < delta + eps), so no large term cancels.
+// S_abs returns |t| outside the band without forming t^2 (no overflow for |t| > 1e154).
 #pragma once
 
 #include <cmath>
@@ -22,7 +30,8 @@ namespace implicitfit {
 template <typename T>
 T SmoothAbs(const T& t, const T& delta, const T& eps, int order) {
   using std::abs;
-  if (order == 0) return ValueOf(t) < 0.0 ? T(-t) : t;
+  if (order == 0 || std::abs(ValueOf(t)) >= ValueOf(delta) + ValueOf(eps))
+    return ValueOf(t) < 0.0 ? T(-t) : t;
   const UnitStep& h = UnitStep::OfOrder(order);
   const T mu_plus = h.WithRisingRange(T(t + delta), eps);
   const T mu_minus = h.WithRisingRange(T(t - delta), eps);
@@ -35,8 +44,12 @@ T SmoothAbs(const T& t, const T& delta, const T& eps, int order) {
 
 template <typename T>
 T SmoothMax(const T& x, const T& y, const T& delta, const T& eps, int order) {
-  if (order == 0) return ValueOf(x) >= ValueOf(y) ? x : y;  // exactly max, no rounding
-  return 0.5 * (x + y + SmoothAbs(T(x - y), delta, eps, order));
+  const bool x_larger = ValueOf(x) >= ValueOf(y);
+  const T t = x - y;
+  // exactly max, no rounding, for the sharp operator and outside the band
+  if (order == 0 || std::abs(ValueOf(t)) >= ValueOf(delta) + ValueOf(eps)) return x_larger ? x : y;
+  const T abs_t = x_larger ? t : T(-t);
+  return (x_larger ? x : y) + 0.5 * (SmoothAbs(t, delta, eps, order) - abs_t);
 }
 
 template <typename T>

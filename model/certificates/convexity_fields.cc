@@ -11,10 +11,10 @@ nlohmann::ordered_json TreeNodesJson(const Model& model, nlohmann::ordered_json*
   using ojson = nlohmann::ordered_json;
   const std::vector<NodeCertificate> certificates = CertifyTree(model);
   auto domain = [&](const NodeCertificate& c) {
-    if (c.domain_patches.empty()) return ojson("everywhere");
+    if (c.domain_nodes.empty()) return ojson("everywhere");
     ojson d = ojson::array();
-    for (int p : c.domain_patches) d.push_back(model.NodeLabel(p));
-    return d;  // the intersection of these patches' tetrahedra
+    for (int p : c.domain_nodes) d.push_back(model.NodeLabel(p));
+    return d;  // the intersection of these nodes' domains
   };
   ojson nodes = ojson::array();
   for (size_t i = 0; i < model.nodes().size(); ++i) {

@@ -1,6 +1,7 @@
 #include "model/certificates/convexity_report.h"
 
 #include "model/certificates/convexity_fields.h"
+#include "model/certificates/convexity_verdict.h"
 
 namespace implicitfit {
 
@@ -29,11 +30,9 @@ nlohmann::ordered_json PatchConvexityJson(int degree, const ConvexityCertificate
 
 nlohmann::ordered_json ModelConvexityJson(const Model& model) {
   nlohmann::ordered_json out;
-  bool convex = true;
   nlohmann::ordered_json patches = nlohmann::ordered_json::array();
   const std::vector<PatchConvexity> certified = CertifyModelPatches(model);
   for (const PatchConvexity& p : certified) {
-    convex &= p.certificate.convex;
     nlohmann::ordered_json entry = PatchConvexityJson(p.degree, p.certificate);
     AppendPatchCertificates(model, p.node, &entry);
     patches.push_back(entry);
@@ -41,12 +40,14 @@ nlohmann::ordered_json ModelConvexityJson(const Model& model) {
   nlohmann::ordered_json tree;
   bool tree_certified = false;
   const nlohmann::ordered_json nodes = TreeNodesJson(model, &tree, &tree_certified);
-  // A model without patches is judged by its tree certificate, not vacuously convex.
-  if (certified.empty()) convex = tree_certified;
-  out["convex"] = convex;
+  // The file verdict: the tree's certificate AND every patch's and mesh's
+  // (model/certificates/convexity_verdict.h).
+  const ConvexityVerdict verdict = JudgeConvexity(model);
+  out["convex"] = verdict.convex;
   out["patches"] = patches;
   out["tree"] = tree;
   out["nodes"] = nodes;
+  out["verdict"] = ConvexityVerdictJson(model, verdict);
   return out;
 }
 

@@ -2,10 +2,10 @@
 // and their JSON form, as `implicitfit check --json` prints it per file and the Python module's
 // check() returns it:
 //   {"convex": bool, "patches": [{"degree": k, "convex": bool, "min_eigenvalue": x, ...}],
-//    "tree": {...}, "nodes": [...]}
-// (the additive per-patch, "tree" and "nodes" fields: model/certificates/convexity_fields.h). "convex" is
-// true when every patch is certified; a model without patches is judged by its tree
-// certificate (model/certificates/tree_certificate.h), not vacuously convex.
+//    "tree": {...}, "nodes": [...], "verdict": {...}}
+// (the additive per-patch, "tree" and "nodes" fields: model/certificates/convexity_fields.h).
+// "convex" is the verdict of model/certificates/convexity_verdict.h: the tree's certificate AND
+// every patch's and mesh's, with what it rests on in "verdict".
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -29,7 +29,7 @@ std::vector<PatchConvexity> CertifyModelPatches(const Model& model);
 
 // {"degree", "convex", "min_eigenvalue"} of one patch.
 nlohmann::ordered_json PatchConvexityJson(int degree, const ConvexityCertificate& certificate);
-// {"convex", "patches", "tree", "nodes"} of a whole model (no sampling fields).
+// {"convex", "patches", "tree", "nodes", "verdict"} of a whole model (no sampling fields).
 nlohmann::ordered_json ModelConvexityJson(const Model& model);
 
 }  // namespace implicitfit

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/certificates/bernstein_mesh_certificate.h"
 #include "model/certificates/convexity_certificate.h"
 #include "model/certificates/symmetric_eigen3.h"
 
@@ -52,7 +53,7 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
                     "bernstein_patch: A^mu not all positive definite");
       NodeCertificate r = Leaf(TreeConvexity::kConvexFunction,
                                "bernstein_patch certified by A^mu: convex on its tetrahedron");
-      r.domain_patches.push_back(index);
+      r.domain_nodes.push_back(index);
       return r;
     }
     case NodeType::kBox:
@@ -93,9 +94,19 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
       return Leaf(TreeConvexity::kNotCertified,
                   "partition_sequence: not certified (sum w_j f_j is not convex even for convex "
                   "f_j)");
-    case NodeType::kBernsteinMesh:
-      return Leaf(TreeConvexity::kNotCertified,
-                  "bernstein_mesh: certified by its own check (\"meshes\": convex on the box)");
+    case NodeType::kBernsteinMesh: {
+      const MeshConvexityCertificate mesh = CertifyMeshConvexity(node.degree, node.grid, p);
+      if (!mesh.convex_on_box)
+        return Leaf(TreeConvexity::kNotCertified,
+                    mesh.certified_tetrahedra < mesh.tetrahedra
+                        ? "bernstein_mesh: some tetrahedra not certified (A^mu)"
+                        : "bernstein_mesh: not C1 across its faces (a kink can be concave)");
+      NodeCertificate r = Leaf(TreeConvexity::kConvexFunction,
+                               "bernstein_mesh certified convex on its box (every A^mu positive "
+                               "definite, C1 across the faces)");
+      r.domain_nodes.push_back(index);
+      return r;
+    }
     case NodeType::kMorph:
     case NodeType::kUnion:
     case NodeType::kIntersection:
@@ -125,13 +136,13 @@ NodeCertificate CertifyOperator(const ModelNode& node, const std::vector<NodeCer
   for (int c : node.children) {
     const NodeCertificate& child = all[c];
     weakest = std::max(weakest, child.convexity);
-    for (int d : child.domain_patches)
-      if (std::find(r.domain_patches.begin(), r.domain_patches.end(), d) == r.domain_patches.end())
-        r.domain_patches.push_back(d);
+    for (int d : child.domain_nodes)
+      if (std::find(r.domain_nodes.begin(), r.domain_nodes.end(), d) == r.domain_nodes.end())
+        r.domain_nodes.push_back(d);
   }
   r.convexity = weakest;
   if (weakest == TreeConvexity::kNotCertified) {
-    r.domain_patches.clear();
+    r.domain_nodes.clear();
     r.rule = "intersection of children not all certified";
   } else if (sharp) {
     r.rule = weakest == TreeConvexity::kConvexFunction
@@ -141,7 +152,7 @@ NodeCertificate CertifyOperator(const ModelNode& node, const std::vector<NodeCer
     r.rule = "convex-smoothing intersection of convex functions";
   } else {
     r.convexity = TreeConvexity::kNotCertified;
-    r.domain_patches.clear();
+    r.domain_nodes.clear();
     r.rule =
         "convex-smoothing intersection needs convex functions, some child is only a "
         "convex solid";
@@ -156,9 +167,9 @@ NodeCertificate CertifyMorph(const ModelNode& node, const std::vector<NodeCertif
   for (int c : node.children) {
     if (all[c].convexity != TreeConvexity::kConvexFunction)
       return Leaf(TreeConvexity::kNotCertified, "morph: needs convex functions as children");
-    for (int d : all[c].domain_patches)
-      if (std::find(r.domain_patches.begin(), r.domain_patches.end(), d) == r.domain_patches.end())
-        r.domain_patches.push_back(d);
+    for (int d : all[c].domain_nodes)
+      if (std::find(r.domain_nodes.begin(), r.domain_nodes.end(), d) == r.domain_nodes.end())
+        r.domain_nodes.push_back(d);
   }
   return r;
 }

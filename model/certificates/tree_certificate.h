@@ -9,12 +9,16 @@
 //     convex function everywhere;
 //   bernstein_patch certified by A^mu (model/certificates/convexity_certificate.h): convex function on its
 //     tetrahedron only (`domain` names it); degree 1: convex function (affine) everywhere;
+//   bernstein_mesh certified convex on its box (model/certificates/bernstein_mesh_certificate.h: every
+//     tetrahedron's A^mu positive definite and C1 across the faces): convex function on the box
+//     only (`domain` names it);
 //   ellipsoid (first-order distance, not convex far from the surface), quadric with A >= 0
 //     (f = q / |grad q|): convex solid;
 //   box (exact SDF), paraboloid with curvature >= 0, skeleton_offset of one point or segment:
 //     convex function everywhere;
 //   torus, quadric with A indefinite, uncertified patch, paraboloid with curvature < 0,
-//   skeleton_offset of several elements, blobs, complement, partition: not certified.
+//   skeleton_offset of several elements, blobs, complement, partition, uncertified mesh: not
+//   certified.
 // morph t f_A + (1 - t) f_B of two convex functions: convex function (convex combination).
 // Operators (n = order; children fold left to right, so the rule is applied to all children):
 //   intersection, n = 0 (sharp max, any smoothing): max of convex functions is convex; the
@@ -23,7 +27,8 @@
 //     arguments, so S^c_max of convex functions is convex (convex solids alone: not certified);
 //   intersection with Li-Phillips smoothing (n >= 1): not certified (S_max is neither convex
 //     nor monotone, docs/maths.md LP-4 a); union, difference: not certified.
-// A convex function on domain D certifies the solid within D; domains combine by intersection.
+// A convex function on domain D certifies the solid within D; domains combine by intersection
+// (a patch's tetrahedron, a mesh's box: both convex, so their intersection is convex).
 #pragma once
 
 #include <string>
@@ -41,8 +46,9 @@ const char* TreeConvexityName(TreeConvexity c);
 struct NodeCertificate {
   TreeConvexity convexity = TreeConvexity::kNotCertified;
   std::string rule;                 // why, in words (the leaf class or the operator rule)
-  std::vector<int> domain_patches;  // f convex only within the tetrahedra of these patch nodes
-                                    // (empty: everywhere)
+  std::vector<int> domain_nodes;  // f convex only within the domains of these nodes (a
+                                  // bernstein_patch's tetrahedron, a bernstein_mesh's box), their
+                                  // intersection; empty: everywhere
 };
 
 // One certificate per node of the model, indexed like Model::nodes().

@@ -4,6 +4,12 @@
 //   grad g = sum_i e_i y_i / (r_i |y|),
 // which is exact for a sphere (all r_i equal), vanishes exactly on the ellipsoid, has
 // |grad f| = 1 there, and keeps f < 0 inside. |grad g| >= 1 / max r_i away from the centre.
+// With e_i orthonormal, |grad g|^2 = sum_i (y_i / r_i)^2 / |y|^2, so
+//   f = (|y| - 1) |y| / sqrt(sum_i (y_i / r_i)^2).
+// At the centre (y = 0) f has no limit (it tends to -r_i along axis i); |y|^2 and the sum are
+// floored by tau = 1e-200 and tau * mean_i(1 / r_i^2), so f(centre) = -1 / sqrt(mean 1 / r_i^2),
+// a finite value between -max r_i and -min r_i (the old floor of grad g alone gave -1e150 there,
+// which a smooth max then cancelled to 0). The floors change nothing for |y| > 1e-90.
 // Parameters: [c 3, r 3, e_1 3, e_2 3] (12); e_1 is normalised, e_2 made orthogonal to it
 // (Gram-Schmidt) and e_3 = e_1 x e_2 at evaluation, so any non-parallel pair is valid.
 #pragma once
@@ -31,13 +37,15 @@ struct EllipsoidEvaluator {
     Sub3(x, p, d);
     T y[3];
     for (int i = 0; i < 3; ++i) y[i] = Dot3(d, e[i]) / p[3 + i];
-    const T ny = sqrt(Dot3(y, y) + 1e-300);
-    T grad[3];
-    for (int k = 0; k < 3; ++k) {
-      grad[k] = T(0.0);
-      for (int i = 0; i < 3; ++i) grad[k] += e[i][k] * (y[i] / (p[3 + i] * ny));
+    constexpr double kTau = 1e-200;
+    const T ny = sqrt(Dot3(y, y) + kTau);
+    T scaled = T(0.0), mean_inverse = T(0.0);
+    for (int i = 0; i < 3; ++i) {
+      const T inverse = 1.0 / p[3 + i];
+      scaled += y[i] * y[i] * inverse * inverse;
+      mean_inverse += inverse * inverse;
     }
-    return (ny - 1.0) / sqrt(Dot3(grad, grad) + 1e-300);
+    return (ny - 1.0) * ny / sqrt(scaled + (kTau / 3.0) * mean_inverse);
   }
 };
 

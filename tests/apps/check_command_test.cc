@@ -166,8 +166,14 @@ TEST(CheckCommand, ConvexFilesExit0AndDegreeOneIsConvexWithZeroMargin) {
     if (oracle::Certify(3, b).convex)
       patches.push_back(PatchNode(3, testsupport::RandomCorners(rng), b));
   }
-  WriteText(dir + "/c.json", Document(patches).dump());
-  const auto r = RunCommand(kCli + " check --json " + dir + "/c.json");
+  // One file per patch: each is certified convex on its tetrahedron (issue 28: the union of
+  // all of them in one file is not convex, whatever its patches are).
+  std::string files;
+  for (size_t i = 0; i < patches.size(); ++i) {
+    WriteText(dir + "/c" + std::to_string(i) + ".json", Document({patches[i]}).dump());
+    files += " " + dir + "/c" + std::to_string(i) + ".json";
+  }
+  const auto r = RunCommand(kCli + " check --json" + files);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const json report = json::parse(r.out);
   EXPECT_EQ(report["convex"], true);
@@ -175,10 +181,17 @@ TEST(CheckCommand, ConvexFilesExit0AndDegreeOneIsConvexWithZeroMargin) {
   EXPECT_EQ(report["files"][0]["patches"][0]["convex"], true);
   EXPECT_EQ(report["files"][0]["patches"][0]["min_eigenvalue"], 0.0);
   // The human table: one row per patch and a verdict line.
-  const auto h = RunCommand(kCli + " check " + dir + "/c.json");
+  const auto h = RunCommand(kCli + " check" + files);
   EXPECT_EQ(h.exit_code, 0);
-  EXPECT_NE(h.out.find("root.children[0]"), std::string::npos) << h.out;
-  EXPECT_NE(h.out.find("all patches certified convex"), std::string::npos) << h.out;
+  EXPECT_NE(h.out.find("c0.json"), std::string::npos) << h.out;
+  EXPECT_NE(h.out.find("every file certified convex"), std::string::npos) << h.out;
+  // All of them in one union: every patch certified, the file not (the union is refused).
+  WriteText(dir + "/u.json", Document(patches).dump());
+  const auto u = RunCommand(kCli + " check --json " + dir + "/u.json");
+  EXPECT_EQ(u.exit_code, 1) << u.err;
+  const json ur = json::parse(u.out);
+  EXPECT_EQ(ur["convex"], false);
+  for (const json& p : ur["files"][0]["patches"]) EXPECT_EQ(p["convex"], true);
 }
 
 TEST(CheckCommand, UnreadableOrInvalidInputExits2NamingTheFileWithNoOutput) {

@@ -96,7 +96,7 @@ TEST(FitShapeControl, BadOptionsExit2) {
   for (const std::string args :
        {"--model quadric-patch --vertex-normal 5=0,0,1",
         "--model quadric-patch --vertex-normal 1=0,0", "--model quadric-patch --through-edge 2,2",
-        "--model quadric-patch --through-vertex 1 --convex",
+        "--model quadric-patch --through-edge 1,2 --convex",
         "--model quadric-patch --vertex-normal 1=0,0,1 --vertex-normal 2=0,0,1",
         "--model sphere --through-vertex 1"}) {
     const auto r = RunCommand(kCli + " fit " + dir + "/c.xyz --out " + dir + "/m.json " + args);

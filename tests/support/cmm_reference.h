@@ -1,9 +1,12 @@
 // Coordinate-measuring-machine test sets and an independent least-squares reference.
 //
 // Sets: 10 mm parts (plane 10 x 10 mm, sphere and cylinder of radius 5 mm, a cone of half angle
-// 25 degrees between 10 and 20 mm from its apex) placed at a random pose far from the origin,
+// 25 degrees between 10 and 20 mm from its apex, a torus of radii 5 and 2 mm) placed at a random
+// pose far from the origin,
 // probed at 6-40 points on partial arcs (sphere: a cap; cylinder and cone: 2-4 circles, each
-// an arc of 120-240 degrees; 3-4 circles for the cone), with a lobed form error of amplitude 1 um
+// an arc of 120-240 degrees; 3-4 circles for the cone; torus: 3-4 parallels at tube angles
+// between -60 and 60 degrees, each an arc of 120-240 degrees around the axis), with a lobed
+// form error of amplitude 1 um
 // (three lobes around the axis, waves of 5 mm on the plane) and Gaussian noise of 0.1 um along the
 // normal; no normals.
 //
@@ -15,6 +18,8 @@
 //   cylinder (x0, y0, a, b, r):     axis through (x0, y0, 0) along (a, b, 1); d = rho - r
 //   cone     (x0, y0, a, b, r0, t): axis through (x0, y0, 15) along (a, b, 1), radius r0 there,
 //                                   tan(half angle) = t; d = (rho - r0 - h t) / sqrt(1 + t^2)
+//   torus    (x0, y0, z0, a, b, R, r): centre (x0, y0, z0), axis (a, b, 1);
+//                                   d = sqrt((rho - R)^2 + h^2) - r
 // (y = R^T (x - o) in the part frame.) Iterated until the step is below 1e-17 mm.
 #pragma once
 
@@ -27,7 +32,7 @@
 
 namespace testsupport {
 
-enum class CmmKind { kPlane, kSphere, kCylinder, kCone };
+enum class CmmKind { kPlane, kSphere, kCylinder, kCone, kTorus };
 
 struct CmmSet {
   CmmKind kind;
@@ -54,10 +59,11 @@ inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
   s.rotation = RandomRotation(rng);
   s.origin = Eigen::Vector3d(100 + 50 * u01(rng), -200 + 50 * u01(rng), 30 + 50 * u01(rng));
   const double R = 5.0, ta = std::tan(CmmSet::kConeHalfAngle);
-  // 2..4 circles; 3..4 for the cone (on two circles the cone's algebraic hypotheses from points
-  // are rank deficient: see fit/metrology/point_hypotheses.h)
-  const int circles = (kind == CmmKind::kCone ? 3 : 2) +
-                      static_cast<int>(u01(rng) * (kind == CmmKind::kCone ? 2 : 3));
+  // 2..4 circles; 3..4 for the cone and the torus (on two circles the cone's algebraic
+  // hypotheses from points are rank deficient: see fit/metrology/point_hypotheses.h; a torus
+  // through two parallels is not determined)
+  const bool three = kind == CmmKind::kCone || kind == CmmKind::kTorus;
+  const int circles = (three ? 3 : 2) + static_cast<int>(u01(rng) * (three ? 2 : 3));
   const double span = (120 + 120 * u01(rng)) * M_PI / 180, start = 2 * M_PI * u01(rng);
   for (int i = 0; i < n; ++i) {
     Eigen::Vector3d y = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitZ();
@@ -94,6 +100,13 @@ inline CmmSet MakeCmmSet(CmmKind kind, int n, unsigned seed, double lobe = 1e-3,
         y = radial * h * ta + Eigen::Vector3d(0, 0, h) + normal * lobes;
         break;
       }
+      case CmmKind::kTorus: {  // R = 5, r = 2, centre at the part origin, axis +z
+        const double theta = (-60 + 120.0 * c / std::max(1, circles - 1)) * M_PI / 180;
+        const Eigen::Vector3d radial(std::cos(phi), std::sin(phi), 0);
+        normal = radial * std::cos(theta) + Eigen::Vector3d::UnitZ() * std::sin(theta);
+        y = radial * 5.0 + normal * (2.0 + lobes);
+        break;
+      }
     }
     y += normal * gauss(rng);
     s.points.push_back(s.origin + s.rotation * y);
@@ -117,7 +130,11 @@ class CmmReference {
   }
 
   static int Size(CmmKind k) {
-    return k == CmmKind::kPlane ? 3 : k == CmmKind::kSphere ? 4 : k == CmmKind::kCylinder ? 5 : 6;
+    return k == CmmKind::kPlane      ? 3
+           : k == CmmKind::kSphere   ? 4
+           : k == CmmKind::kCylinder ? 5
+           : k == CmmKind::kCone     ? 6
+                                     : 7;
   }
   static VecL Truth(CmmKind k) {
     VecL p = VecL::Zero(Size(k));
@@ -125,6 +142,10 @@ class CmmReference {
     if (k == CmmKind::kCone) {
       p[4] = 15 * std::tan(static_cast<LD>(CmmSet::kConeHalfAngle));
       p[5] = std::tan(static_cast<LD>(CmmSet::kConeHalfAngle));
+    }
+    if (k == CmmKind::kTorus) {
+      p[5] = 5;
+      p[6] = 2;
     }
     return p;
   }
@@ -149,6 +170,13 @@ class CmmReference {
         const Eigen::Matrix<LD, 3, 1> w = y - q;
         const LD h = w.dot(u), rho = (w - h * u).norm();
         return (rho - p[4] - h * p[5]) / sqrt(1 + p[5] * p[5]);
+      }
+      case CmmKind::kTorus: {
+        Eigen::Matrix<LD, 3, 1> u(p[3], p[4], 1), c(p[0], p[1], p[2]);
+        u /= u.norm();
+        const Eigen::Matrix<LD, 3, 1> w = y - c;
+        const LD h = w.dot(u), rho = (w - h * u).norm();
+        return sqrt((rho - p[5]) * (rho - p[5]) + h * h) - p[6];
       }
     }
     return 0;
@@ -239,6 +267,17 @@ inline std::vector<std::pair<std::string, double>> ParameterDifferences(
         d.push_back({"radius at z=15", std::abs(r_at - static_cast<double>(q[4]))});
         d.push_back({"half angle x L", std::abs(p[6] - std::atan(static_cast<double>(q[5]))) * L});
       }
+      break;
+    }
+    case CmmKind::kTorus: {
+      const Eigen::Vector3d u = dir(3), c = ToPart(s, Eigen::Vector3d(p[0], p[1], p[2]));
+      Eigen::Vector3d uref(static_cast<double>(q[3]), static_cast<double>(q[4]), 1.0);
+      uref.normalize();
+      d.push_back({"axis angle x L", std::atan2(u.cross(uref).norm(), u.dot(uref)) * L});
+      for (int k = 0; k < 3; ++k)
+        d.push_back({"center" + std::to_string(k), std::abs(c[k] - static_cast<double>(q[k]))});
+      d.push_back({"major radius", std::abs(p[6] - static_cast<double>(q[5]))});
+      d.push_back({"minor radius", std::abs(p[7] - static_cast<double>(q[6]))});
       break;
     }
   }

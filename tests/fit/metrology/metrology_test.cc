@@ -36,6 +36,8 @@ NodeType KindOf(CmmKind k) {
       return NodeType::kSphere;
     case CmmKind::kCylinder:
       return NodeType::kCylinder;
+    case CmmKind::kTorus:
+      return NodeType::kTorus;
     default:
       return NodeType::kCone;
   }

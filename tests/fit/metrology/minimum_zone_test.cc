@@ -31,6 +31,7 @@ NodeType KindOf(CmmKind k) {
   return k == CmmKind::kPlane      ? NodeType::kPlane
          : k == CmmKind::kSphere   ? NodeType::kSphere
          : k == CmmKind::kCylinder ? NodeType::kCylinder
+         : k == CmmKind::kTorus    ? NodeType::kTorus
                                    : NodeType::kCone;
 }
 
@@ -42,6 +43,8 @@ std::vector<double> TrueParameters(const CmmSet& s) {
       return {o.x(), o.y(), o.z(), 5.0};
     case CmmKind::kCylinder:
       return {o.x(), o.y(), o.z(), u.x(), u.y(), u.z(), 5.0};
+    case CmmKind::kTorus:
+      return {o.x(), o.y(), o.z(), u.x(), u.y(), u.z(), 5.0, 2.0};
     default:
       return {o.x(), o.y(), o.z(), u.x(), u.y(), u.z(), CmmSet::kConeHalfAngle};
   }

@@ -1,6 +1,7 @@
 // Recovery of Coleman's feature parameters (docs/maths.md CO-2) through the tree fitter.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
 
@@ -79,6 +80,43 @@ TEST(ColemanFeaturesRecovery, NotesFormOnATriangleSkeletonWithinOnePercent) {
   EXPECT_NEAR(w, 0.3, 0.003);
   EXPECT_NEAR(d, 0.25, 0.0025);
   EXPECT_NEAR(rr, 0.2, 0.002);
+}
+
+// The feature point's free direction (issue 28): f enters Coleman's field only through its
+// closest core point c(f) and the direction u from c(f) to f, neither of which changes when f
+// slides along u, so a solver could drift along it (a fitted point went from 0.7 to 14.6, out
+// of its falloff region). On a spherical core (radius 1, fixed) with the feature off the axes,
+// f's distance to the core must stay at its start value and its direction recover the truth.
+TEST(ColemanFeaturesRecovery, FeaturePointDoesNotDriftAlongItsFreeDirection) {
+  const Vec axis = Vec(0.6, 0.0, 0.8);
+  auto bump = [](double rc, const Vec& f, double w, double d, double r) {
+    Model m;
+    const int core = m.AddPrimitive(NodeType::kSphere, {0, 0, 0, 1.0});
+    m.mutable_nodes()[core].fixed = {"center", "radius"};
+    m.AddColemanFeatures(core, rc, {f.x(), f.y(), f.z(), w, d, r, 0.0});
+    return m;
+  };
+  SampleOptions so;
+  so.count = 1500;
+  so.noise = 0.0005;
+  so.seed = 10;
+  so.has_box = true;
+  so.box_min = Vec(-0.2, -1.2, 0.0);
+  so.box_max = Vec(2.2, 1.2, 2.2);
+  const SampledCloud s = SampleModel(bump(0.4, 1.2 * axis, 0.3, 0.25, 0.2), so);
+  // Start: 10% off in R_C, W, D, R, and the feature's direction 3 degrees off.
+  const Vec start_dir = Eigen::AngleAxisd(3 * M_PI / 180, Vec::UnitY()) * axis;
+  const Vec start = 1.2 * start_dir;
+  const TreeFitResult r = FitModelTree(bump(0.44, start, 0.33, 0.22, 0.22), s.cloud.points,
+                                       s.cloud.normals, TreeFitOptions{});
+  ASSERT_TRUE(r.success) << r.message;
+  const std::vector<double>& p = r.model.parameters();  // sphere 4, R_C, f 3, W, D, R, flare
+  const Vec f(p[5], p[6], p[7]);
+  std::printf("  coleman on a sphere: |f| %.6f (start 1.2), direction error %.3g deg, W %.4f\n",
+              f.norm(), std::acos(std::min(1.0, f.normalized().dot(axis))) * 180 / M_PI, p[8]);
+  EXPECT_NEAR(f.norm(), start.norm(), 0.02);  // the radial component stays (to second order)
+  EXPECT_LT(std::acos(std::min(1.0, f.normalized().dot(axis))) * 180 / M_PI, 0.3);
+  EXPECT_NEAR(p[8], 0.3, 0.003);
 }
 
 }  // namespace

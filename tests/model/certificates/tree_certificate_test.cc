@@ -53,8 +53,8 @@ TEST(TreeCertificate, PatchesAreConvexOnTheirTetrahedronOnly) {
   const std::vector<NodeCertificate> c = CertifyTree(m);
   EXPECT_EQ(c[patch].convexity, TreeConvexity::kConvexFunction);
   EXPECT_EQ(c[m.root()].convexity, TreeConvexity::kConvexFunction);
-  EXPECT_EQ(c[m.root()].domain_patches, std::vector<int>{patch});
-  EXPECT_TRUE(c[plane].domain_patches.empty());
+  EXPECT_EQ(c[m.root()].domain_nodes, std::vector<int>{patch});
+  EXPECT_TRUE(c[plane].domain_nodes.empty());
 }
 
 Model WitnessTree(BlendSmoothing smoothing) {
