@@ -32,8 +32,11 @@ struct CloudFileInfo {
   // Per-point properties present in the file and deliberately not used (colour, intensity,
   // labels, curvature, ...).
   std::vector<std::string> ignored_properties;
-  // Per-point integer labels of labelled text clouds (.xyzl: "x y z label", e.g. the Fit4CAD
-  // primitive number); empty for other formats.
+  // Per-point integer labels: the .xyzl label column ("x y z label", e.g. the Fit4CAD primitive
+  // number), or a PLY/PCD field "label" (PCL's PointXYZL), "scalar_label" (CloudCompare) or
+  // "segment_index" (CGAL), the first of them the file has, when its values are integers; else
+  // empty. One per returned point (dropped records dropped here too). Such fields are still
+  // listed in ignored_properties: the reading itself does not use them.
   std::vector<int> labels;
 };
 

@@ -5,11 +5,16 @@
 //       but at least min_k and at most max_k of them (nearest first).
 // On an evenly sampled surface, radius 2s holds about 4 x 6 = 24 neighbours; sparse regions
 // fall back to min_k, dense ones are capped at max_k. The search runs on coordinates recentred
-// at the centroid, so far-off clouds (UTM, ~1e6) lose no precision.
+// at the centroid, so far-off clouds (UTM, ~1e6) lose no precision. The queries run in blocks
+// on all cores, each writing its points' rows of the graph in place (model/neighbour_graph.h):
+// the search holds the graph, the k-d tree and one block of results, about 200 bytes a point
+// at max_k = 30. The result does not depend on the thread count.
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
+
+#include "model/neighbour_graph.h"
 
 namespace implicitfit {
 
@@ -17,11 +22,11 @@ struct NeighbourhoodOptions {
   int min_k = 8;               // never fewer neighbours than this (when the cloud has them)
   int max_k = 30;              // never more than this
   double radius_factor = 2.0;  // radius in units of the median 6th-neighbour distance
+  int num_threads = 0;         // 0: every core
 };
 
 struct Neighbourhoods {
-  std::vector<std::vector<int>>
-      indices;           // per point, its neighbours (itself excluded), nearest first
+  NeighbourGraph indices;  // per point, its neighbours (itself excluded), nearest first
   double spacing = 0.0;  // s, the median 6th-neighbour distance
   double radius = 0.0;   // radius_factor * s
 };

@@ -8,8 +8,10 @@
 namespace implicitfit {
 
 PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action,
-                             bool estimate_missing) {
-  CloudFileInfo info;
+                             bool estimate_missing, CloudFileInfo* file_info,
+                             Neighbourhoods* neighbourhoods) {
+  CloudFileInfo local;
+  CloudFileInfo& info = file_info ? *file_info : local;
   PointCloud cloud = ReadCloudFile(path, &info);
   if (!estimate_missing && !cloud.has_normals()) {
     if (normals_action) *normals_action = "none in the file";
@@ -18,7 +20,7 @@ PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_actio
   NormalOptions options;
   options.viewpoint = info.viewpoint;
   try {
-    const NormalResult result = EnsureOrientedNormals(&cloud, options);
+    const NormalResult result = EnsureOrientedNormals(&cloud, options, neighbourhoods);
     if (normals_action) *normals_action = result.action;
   } catch (const std::invalid_argument& e) {
     // Too few points to estimate normals: not an invalid file but degenerate data; the fit

@@ -6,15 +6,21 @@
 // normals is returned without them (`normals_action` says so): degenerate data, left to the
 // fit to refuse with exit 1.
 // estimate_missing false: a file without normals is returned without them ("none in the file").
+// info (optional) receives what the reader found (CloudFileInfo: labels, viewpoint, ...);
+// neighbourhoods (optional) the neighbourhoods the normals were estimated or checked with
+// (empty when there were none).
 #pragma once
 
 #include <string>
 
+#include "datasets/clouds/cloud_file_info.h"
 #include "datasets/clouds/point_cloud.h"
+#include "datasets/normals/neighbourhoods.h"
 
 namespace implicitfit {
 
 PointCloud ReadOrientedCloud(const std::string& path, std::string* normals_action,
-                             bool estimate_missing = true);
+                             bool estimate_missing = true, CloudFileInfo* info = nullptr,
+                             Neighbourhoods* neighbourhoods = nullptr);
 
 }  // namespace implicitfit

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <iterator>
 #include <numeric>
 #include <random>
@@ -126,7 +127,7 @@ struct Scales {
 class Detector {
  public:
   Detector(const std::vector<Vector3d>& x, const std::vector<Vector3d>& n,
-           const std::vector<std::vector<int>>& nb, const Scales& scales, int min_points,
+           const NeighbourGraph& nb, const Scales& scales, int min_points,
            const DetectionOptions& options)
       : x_(x),
         n_(n),
@@ -137,6 +138,19 @@ class Detector {
         min_points_(min_points),
         options_(options),
         labels_(x.size(), -1) {}
+
+  // Progress line (options_.progress), and a figure for the seed rounds.
+  void Tell(const std::string& message) const {
+    if (options_.progress) options_.progress(message);
+  }
+  std::string Assigned() const {
+    size_t assigned = 0;
+    for (int l : labels_) assigned += l >= 0;
+    char line[120];
+    std::snprintf(line, sizeof line, "%zu primitives, %zu of %zu points assigned",
+                  primitives_.size(), assigned, labels_.size());
+    return line;
+  }
 
   bool Supports(const PrimitiveFunction& f, int i) const { return Supports(f, i, tau_); }
   bool Supports(const PrimitiveFunction& f, int i, double band) const {
@@ -603,7 +617,9 @@ class Detector {
     std::vector<int> pool;
     for (int i = 0; i < N; ++i)
       if (Seedable(i)) pool.push_back(i);
+    Tell("first pass: seeds among " + std::to_string(pool.size()) + " points");
     Rounds(std::move(pool), 0, result);
+    Tell("first pass done: " + Assigned());
     std::vector<char> free(N, 0);
     int free_points = 0;
     for (int i = 0; i < N; ++i) free_points += free[i] = labels_[i] < 0;
@@ -614,7 +630,9 @@ class Detector {
     pool.clear();
     for (int i = 0; i < N; ++i)
       if (free[i] && Seedable(i)) pool.push_back(i);
+    Tell("leftover pass: seeds among " + std::to_string(pool.size()) + " free points");
     Rounds(std::move(pool), 1, result);
+    Tell("leftover pass done: " + Assigned());
     leftover_pass_ = false;
     for (int i = 0; i < N; ++i)
       if (labels_[i] < 0) n_[i] = original[i];
@@ -628,6 +646,7 @@ class Detector {
     std::vector<char> tried(N, 0);
     std::mt19937 rng(options_.seed + pass);
     int free_points = 0, failures = 0;
+    auto last_told = std::chrono::steady_clock::now();
     for (int i = 0; i < N; ++i) free_points += labels_[i] < 0;
     for (int round = 0; !pool.empty(); ++round) {
       // Seeds: uniform among the untried free seedable points (ineligible ones are dropped lazily).
@@ -679,6 +698,11 @@ class Detector {
         primitives_.push_back({c.kind, std::move(c.params), {}, std::move(free), 0.0, "unknown"});
         ++result->candidates_accepted;
         failures = 0;
+      }
+      if (options_.progress &&
+          std::chrono::steady_clock::now() - last_told > std::chrono::seconds(3)) {
+        last_told = std::chrono::steady_clock::now();
+        Tell("  " + std::to_string(result->seeds) + " seeds: " + Assigned());
       }
       // Stop once a primitive of min_points points among the free ones would have been seeded
       // with 99% probability by the failed seeds in a row.
@@ -1082,7 +1106,7 @@ class Detector {
  private:
   const std::vector<Vector3d>& x_;
   std::vector<Vector3d> n_;  // a copy: the leftover pass re-estimates the free points' normals
-  const std::vector<std::vector<int>>& nb_;
+  const NeighbourGraph& nb_;
   double tau_, cos_, sigma_;
   int min_points_;
   const DetectionOptions& options_;
@@ -1116,7 +1140,7 @@ bool DetectionOptions::IsValid(std::string* error) const {
 
 DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
                                  const std::vector<Vector3d>& normals,
-                                 const std::vector<std::vector<int>>& neighbours, double spacing,
+                                 const NeighbourGraph& neighbours, double spacing,
                                  const DetectionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string error;
@@ -1125,8 +1149,8 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   if (normals.size() != N || neighbours.size() != N)
     throw std::invalid_argument(
         "DetectPrimitives: points, normals and neighbourhoods differ in count");
-  for (const auto& nb : neighbours)
-    for (int j : nb)
+  for (size_t i = 0; i < N; ++i)
+    for (int j : neighbours[i])
       if (j < 0 || static_cast<size_t>(j) >= N)
         throw std::invalid_argument("DetectPrimitives: neighbour index out of range");
   DetectionResult result;
@@ -1188,7 +1212,17 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
     for (const auto& p : x) box.extend(p);
     detector.diagonal_ = box.diagonal().norm();
   }
+  if (options.progress) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "%zu points: spacing %.4g, noise %.4g, band %.4g, normal band %.0f deg, smallest "
+                  "primitive %d points",
+                  N, spacing, result.noise, result.threshold, result.normal_angle_deg,
+                  result.min_points);
+    options.progress(line);
+  }
   detector.Run(&result);
+  detector.Tell("final stage: kinds, merging, re-assignment, refinement");
   result.simplified = detector.Simplify();
   result.merges = detector.Merge();
   result.simplified += detector.Rekind();
@@ -1205,6 +1239,12 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
     result.primitives.push_back(std::move(p));
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.progress) {
+    char line[120];
+    std::snprintf(line, sizeof line, "%zu primitives in %.2f s", result.primitives.size(),
+                  result.seconds);
+    options.progress(line);
+  }
   return result;
 }
 

@@ -9,7 +9,7 @@ namespace implicitfit {
 
 double EstimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points,
                             const std::vector<Eigen::Vector3d>& normals,
-                            const std::vector<std::vector<int>>& neighbours, size_t stride) {
+                            const NeighbourGraph& neighbours, size_t stride) {
   constexpr size_t kNeighbours = 8;
   std::vector<double> figures, e;
   stride = std::max<size_t>(1, stride);
