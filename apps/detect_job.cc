@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "datasets/clouds/ply_writer.h"
+#include "datasets/clouds/spatial_order.h"
 #include "datasets/io/io_error.h"
 #include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/oriented_cloud.h"
@@ -34,6 +35,19 @@ std::array<std::uint8_t, 3> PrimitiveColour(int label) {
   return {byte(r), byte(g), byte(b)};
 }
 
+// The detection of a cloud put in spatial order, back in the file's order.
+void RestoreFileOrder(const std::vector<size_t>& order, CloudDetection* d) {
+  d->result.labels = RestoreOrder(order, d->result.labels);
+  d->result.residuals = RestoreOrder(order, d->result.residuals);
+  if (!d->info.labels.empty()) d->info.labels = RestoreOrder(order, d->info.labels);
+  d->cloud.points = RestoreOrder(order, d->cloud.points);
+  d->cloud.normals = RestoreOrder(order, d->cloud.normals);
+  for (DetectedPrimitive& p : d->result.primitives) {
+    for (int& i : p.points) i = static_cast<int>(order[i]);
+    std::sort(p.points.begin(), p.points.end());
+  }
+}
+
 void Tell(const DetectionOptions& options, const std::string& message) {
   if (options.progress) options.progress(message);
 }
@@ -54,7 +68,8 @@ CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& 
   const auto start = std::chrono::steady_clock::now();
   Tell(options, "reading " + path);
   Neighbourhoods nb;
-  d.cloud = ReadOrientedCloud(path, &normals_action, true, &d.info, &nb);
+  std::vector<size_t> order;  // large clouds are detected in Morton order (locality)
+  d.cloud = ReadOrientedCloud(path, &normals_action, true, &d.info, &nb, &order);
   const size_t N = d.cloud.size();
   d.scene.cloud = path;
   d.scene.points = static_cast<int>(N);
@@ -76,6 +91,8 @@ CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& 
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   Tell(options, line);
   d.result = DetectPrimitives(d.cloud.points, d.cloud.normals, nb.indices, nb.spacing, options);
+  nb = Neighbourhoods();
+  if (!order.empty()) RestoreFileOrder(order, &d);
   const DetectionResult& r = d.result;
   std::map<std::string, int> kinds;
   int assigned = 0;

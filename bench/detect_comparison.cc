@@ -13,6 +13,11 @@
 // min_points 0.5% of the points, each grid run stopped after 10 s (CGAL's defaults run to the end).
 // --scale: instead, one generated scene of about 10^6 points (ground 500 000, five objects of
 // 80 000, 10% outliers), implicitfit only: neighbourhoods + detection time.
+// --scale-scene DIR: writes that scene as DIR/scene_1e6.ply (double x y z, normals) and its
+// truth DIR/scene_1e6.truth (datasets/io/truth_labels.h) for bench/detect_scale.sh, which runs
+// `implicitfit detect` and `detect_comparison --cgal` on it under /usr/bin/time -v.
+// --cgal CLOUD TRUTH: CGAL's Efficient RANSAC (defaults) on a cloud file with normals, scored
+// against a truth file: one table row (its peak memory is the process's).
 // Usage: detect_comparison [--quick] [--no-cgal] [--scale] > table.md
 #include <Eigen/Dense>
 #include <chrono>
@@ -30,6 +35,8 @@
 #include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/normal_estimation.h"
 #include "datasets/generators/scene_generator.h"
+#include "datasets/clouds/ply_writer.h"
+#include "datasets/io/truth_labels.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/detect/segmentation_metrics.h"
@@ -135,17 +142,39 @@ void Print(const std::string& cloud, size_t points, const std::string& method, c
 
 }  // namespace
 
+GeneratedScene ScaleScene() {
+  GeneratedSceneOptions o;
+  o.ground_points = 500000;
+  o.object_points = 80000;
+  return GenerateScene(o);
+}
+
 int main(int argc, char** argv) {
   bool quick = false, cgal = true;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--scale")) {
-      GeneratedSceneOptions o;
-      o.ground_points = 500000;
-      o.object_points = 80000;
-      const GeneratedScene g = GenerateScene(o);
+      const GeneratedScene g = ScaleScene();
       Case c{"generated scene, 10^6 points", g.cloud, g.labels, g.kinds};
       const Row r = RunImplicitfit(c);
       Print(c.name, c.cloud.size(), "implicitfit", r);
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--scale-scene") && i + 1 < argc) {
+      const std::string dir = argv[i + 1];
+      const GeneratedScene g = ScaleScene();
+      WritePlyFile(g.cloud, dir + "/scene_1e6.ply");
+      WriteTruthFile(g.labels, g.kinds, dir + "/scene_1e6.truth");
+      std::printf("%s/scene_1e6.ply: %zu points\n", dir.c_str(), g.cloud.size());
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--cgal") && i + 2 < argc) {
+      Case c;
+      c.name = argv[i + 1];
+      c.cloud = ReadCloudFile(argv[i + 1]);
+      const TruthLabels t = ReadTruthFile(argv[i + 2], static_cast<long>(c.cloud.size()));
+      c.labels = t.labels;
+      c.kinds = t.kinds;
+      Print(c.name, c.cloud.size(), "CGAL defaults", RunCgal(c, {}));
       return 0;
     }
     if (!std::strcmp(argv[i], "--quick")) quick = true;

@@ -1,10 +1,13 @@
 #include "datasets/normals/neighbourhoods.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <flann/flann.hpp>
 #include <stdexcept>
 #include <thread>
 
+#include "datasets/clouds/spatial_order.h"
 #include "model/median.h"
 
 namespace implicitfit {
@@ -56,6 +59,10 @@ Neighbourhoods FindNeighbourhoods(const std::vector<Eigen::Vector3d>& points,
   // spacing is known.
   Neighbourhoods out;
   out.indices = NeighbourGraph(n, static_cast<size_t>(max_k));
+  // Queries in Morton order: consecutive ones are near each other, so the k-d tree's nodes and
+  // points they visit stay in cache (the input order may be random: a generated or merged
+  // cloud). Each query is answered the same in any order.
+  const std::vector<size_t> order = MortonOrder(points);
   const int spacing_rank = std::min(6, max_k);
   std::vector<double> d6(n, -1.0);
   const size_t blocks = (n + kBlock - 1) / kBlock;
@@ -64,16 +71,18 @@ Neighbourhoods FindNeighbourhoods(const std::vector<Eigen::Vector3d>& points,
   threads = std::max(1, std::min<int>(threads, static_cast<int>(blocks)));
   auto work = [&](int t) {
     std::vector<size_t> idx(kBlock * knn);
-    std::vector<double> dist(kBlock * knn);
+    std::vector<double> dist(kBlock * knn), query(3 * kBlock);
     for (size_t b = t; b < blocks; b += threads) {
       const size_t first = b * kBlock, rows = std::min(kBlock, n - first);
-      flann::Matrix<double> queries(data.data() + 3 * first, rows, 3);
+      for (size_t r = 0; r < rows; ++r)
+        for (int k = 0; k < 3; ++k) query[3 * r + k] = data[3 * order[first + r] + k];
+      flann::Matrix<double> queries(query.data(), rows, 3);
       flann::Matrix<size_t> indices(idx.data(), rows, knn);
       flann::Matrix<double> dists(dist.data(), rows, knn);
       const int found = index.knnSearch(queries, indices, dists, knn, params);
       (void)found;  // every row holds knn entries: knn <= n
       for (size_t r = 0; r < rows; ++r) {
-        const size_t i = first + r;
+        const size_t i = order[first + r];
         int* slots = out.indices.Slots(i);
         size_t m = 0;
         for (size_t j = 0; j < knn; ++j) {

@@ -30,10 +30,12 @@ using Eigen::Vector3d;
 
 constexpr int kMaxRefitPoints = 2000;  // points of a growth refit (evenly spread subset)
 constexpr int kMaxCostPoints = 4000;   // points of the kind-selection cost
+constexpr size_t kMaxRefinePoints = 100000;  // points of the final ML refinement (subset above)
 constexpr int kGrowthRounds = 8;       // refit-and-regrow rounds of one candidate
 // Each kind's growth from a seed stops at this many points (breadth-first from the seed's patch:
 // a local region is enough for the refit, which uses kMaxRefitPoints of them, and for the kind
-// choice); the winning kind's support is then grown without limit once (Complete). Above every
+// choice); the winning kind's support is grown without limit once, when the candidate is accepted
+// (over the points still free then: a conflicting candidate is never completed). Above every
 // benchmark cloud's size (31 374 points), so it only changes large clouds, where each kind's
 // every refit round regrew the whole support (10^6 points: growth took about 55% of the time).
 constexpr size_t kMaxGrowthPoints = 50000;
@@ -130,7 +132,8 @@ class Detector {
            const NeighbourGraph& nb, const Scales& scales, int min_points,
            const DetectionOptions& options)
       : x_(x),
-        n_(n),
+        input_n_(n),
+        n_(&n),
         nb_(nb),
         tau_(scales.tau),
         cos_(scales.cos_theta),
@@ -158,7 +161,7 @@ class Detector {
     const double r = f(x_[i], &g);
     if (!(std::abs(r) < band)) return false;
     const double gn = g.norm();
-    return gn > 0 && std::abs(g.dot(n_[i])) >= cos_ * gn;
+    return gn > 0 && std::abs(g.dot((*n_)[i])) >= cos_ * gn;
   }
 
   struct Workspace {
@@ -231,7 +234,7 @@ class Detector {
     for (int s = 0; s < m; ++s) {
       const int i = patch[pick(rng)];
       p.push_back(x_[i]);
-      q.push_back(n_[i]);
+      q.push_back((*n_)[i]);
     }
     switch (kind) {
       case NodeType::kPlane:
@@ -330,13 +333,6 @@ class Detector {
     double band = 0.0;         // and in which band
   };
 
-  // The whole support of a capped growth (the kind's final parameters, no limit).
-  void Complete(NodeType kind, Grown* g, Workspace& w) const {
-    if (!g->capped) return;
-    g->support = Grow(PrimitiveFunction(kind, g->params), g->sources, w, g->band);
-    g->capped = false;
-  }
-
   // Best hypothesis of `kind` on the patch, refitted and grown.
   Grown GrowKind(NodeType kind, const std::vector<int>& patch, std::mt19937& rng,
                  Workspace& w) const {
@@ -349,7 +345,7 @@ class Detector {
         kind == NodeType::kPlane ? std::max(4, options_.hypotheses / 3) : options_.hypotheses;
     // Try 0: the fit to the whole patch (fit/detect/patch_hypotheses.h), then minimal samples.
     std::vector<Vector3d> px, pn;
-    for (int i : patch) px.push_back(x_[i]), pn.push_back(n_[i]);
+    for (int i : patch) px.push_back(x_[i]), pn.push_back((*n_)[i]);
     for (int t = -1; t < tries; ++t) {
       if (t < 0) {
         const bool ok = kind == NodeType::kPlane      ? PlaneFromPatch(px, pn, &h)
@@ -418,7 +414,7 @@ class Detector {
       const double rms =
           RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
       if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
-      // A growth stopped at kMaxGrowthPoints is completed by Complete() if the kind wins.
+      // A growth stopped at kMaxGrowthPoints is completed when its candidate is accepted.
       best.band = band;
       best.capped = best.support.size() >= kMaxGrowthPoints;
       if (best.capped) best.sources = patch_support(best.params);
@@ -435,8 +431,33 @@ class Detector {
     NodeType kind = NodeType::kPlane;
     std::vector<double> params;
     std::vector<int> support;
+    // A support stopped at kMaxGrowthPoints: completed (grown without limit from `sources` in
+    // `band`) only when the candidate is accepted, over the points still free then.
+    bool capped = false;
+    std::vector<int> sources;
+    double band = 0.0;
     std::vector<int> patch;
   };
+
+  // The whole support of a capped candidate over the points free now, refitted and regrown
+  // while it grows by 2% or more (the refit of a growth stopped at kMaxGrowthPoints saw only
+  // the region around its seed: a plane's small tilt there leaves the band far away and would
+  // cut a large face in two). Sorted.
+  std::vector<int> CompleteSupport(Candidate* c, Workspace& w) const {
+    std::vector<int> support = Grow(PrimitiveFunction(c->kind, c->params), c->sources, w, c->band);
+    for (int round = 0; round < kGrowthRounds; ++round) {
+      std::vector<double> refit = c->params;
+      if (RefitPrimitiveLocally(c->kind, x_, Spread(support, kMaxRefitPoints), &refit, 30) < 0 ||
+          !Finite(refit) || !Reasonable(c->kind, refit))
+        break;
+      std::vector<int> grown = Grow(PrimitiveFunction(c->kind, refit), c->sources, w, c->band);
+      if (grown.size() < 1.02 * support.size()) break;
+      c->params = std::move(refit);
+      support = std::move(grown);
+    }
+    std::sort(support.begin(), support.end());
+    return support;
+  }
 
   // Seedable: the point's normal agrees (within theta) with those of its first 8 neighbours; in
   // the leftover pass, with those of them that are free (at least kMinFreeSeedNeighbours).
@@ -446,7 +467,7 @@ class Detector {
     for (size_t k = 0; k < std::min<size_t>(8, nb_[i].size()); ++k) {
       const int j = nb_[i][k];
       if (leftover_pass_ && labels_[j] >= 0) continue;
-      if (std::abs(n_[i].dot(n_[j])) < cos_) return false;
+      if (std::abs((*n_)[i].dot((*n_)[j])) < cos_) return false;
       ++compared;
     }
     return !leftover_pass_ || compared >= kMinFreeSeedNeighbours;
@@ -595,10 +616,12 @@ class Detector {
       const int first = SplitTest(best, grown, kinds, all, u, scale, rng, w);
       if (first >= 0) best = first;
     }
-    Complete(kinds[best], &grown[best], w);
     c.kind = kinds[best];
     c.params = std::move(grown[best].params);
     c.support = std::move(grown[best].support);
+    c.capped = grown[best].capped;
+    c.sources = std::move(grown[best].sources);
+    c.band = grown[best].band;
     std::vector<double> band;
     if (c.kind == NodeType::kSphere && CylinderKindAllowed() && BandCylinder(c.support, &band))
       c.kind = NodeType::kCylinder, c.params = std::move(band);
@@ -624,8 +647,8 @@ class Detector {
     int free_points = 0;
     for (int i = 0; i < N; ++i) free_points += free[i] = labels_[i] < 0;
     if (free_points < min_points_) return;
-    const std::vector<Vector3d> original = n_;
-    n_ = RestrictedNormals(x_, original, nb_, free);
+    const std::vector<Vector3d> restricted = RestrictedNormals(x_, input_n_, nb_, free);
+    n_ = &restricted;
     leftover_pass_ = true;
     pool.clear();
     for (int i = 0; i < N; ++i)
@@ -634,8 +657,15 @@ class Detector {
     Rounds(std::move(pool), 1, result);
     Tell("leftover pass done: " + Assigned());
     leftover_pass_ = false;
-    for (int i = 0; i < N; ++i)
-      if (labels_[i] < 0) n_[i] = original[i];
+    n_ = &input_n_;
+    bool assigned = false;
+    for (int i = 0; i < N && !assigned; ++i) assigned = free[i] && labels_[i] >= 0;
+    if (assigned) {  // points the leftover pass assigned keep their re-estimated normals
+      own_n_ = input_n_;
+      for (int i = 0; i < N; ++i)
+        if (free[i] && labels_[i] >= 0) own_n_[i] = restricted[i];
+      n_ = &own_n_;
+    }
   }
 
   // Seed rounds from `pool` (seedable points) until the stop rule; `pass` enters the seeds' RNGs.
@@ -692,6 +722,7 @@ class Detector {
           pool.push_back(seeds[b]);  // conflicted: may be seeded again
           continue;
         }
+        if (c.capped) free = CompleteSupport(&c, workspaces[0]);
         const int id = static_cast<int>(primitives_.size());
         for (int i : free) labels_[i] = id;
         free_points -= static_cast<int>(free.size());
@@ -783,7 +814,7 @@ class Detector {
       return n;
     };
     std::vector<Vector3d> px, pn;
-    for (int i : s) px.push_back(x_[i]), pn.push_back(n_[i]);
+    for (int i : s) px.push_back(x_[i]), pn.push_back((*n_)[i]);
     std::vector<std::vector<double>> hypotheses;
     std::vector<double> h;
     if ((kind == NodeType::kPlane && PlaneFromPatch(px, pn, &h)) ||
@@ -998,7 +1029,7 @@ class Detector {
           const double r = std::abs(fs[k](x_[i], &g));
           const double gn = g.norm();
           if (!(r < tau_) || !(gn > 0)) continue;
-          const double cos = std::abs(g.dot(n_[i])) / gn;
+          const double cos = std::abs(g.dot((*n_)[i])) / gn;
           if (cos >= cos_ && better(r, cos, labels[i], best, best_cos))
             best = r, best_cos = cos, labels[i] = k;
           if (better(r, cos, fallback[i], best_any, best_any_cos))
@@ -1063,8 +1094,12 @@ class Detector {
     ParallelFor(K, threads, [&](int k, int) {
       DetectedPrimitive& p = primitives_[k];
       if (options_.refine) {
+        // Primitives above kMaxRefinePoints are refined on an evenly spread subset of their
+        // points (memory: the fit copies its points), the standard deviations scaled by
+        // sqrt(subset / points): the information grows with the number of points.
+        const std::vector<int> s = Spread(p.points, kMaxRefinePoints);
         std::vector<Vector3d> px, pn;
-        for (int i : p.points) px.push_back(x_[i]), pn.push_back(n_[i]);
+        for (int i : s) px.push_back(x_[i]), pn.push_back((*n_)[i]);
         PrimitiveFitOptions fo;
         fo.kind = p.kind;
         fo.initial = p.parameters;
@@ -1078,6 +1113,8 @@ class Detector {
         if (r.success && Finite(r.parameters)) {
           p.parameters = r.parameters;
           p.standard_deviations = r.standard_deviations;
+          const double scale = std::sqrt(static_cast<double>(s.size()) / p.points.size());
+          for (double& sd : p.standard_deviations) sd *= scale;
         }
       }
       const PrimitiveFunction f(p.kind, p.parameters);
@@ -1087,7 +1124,7 @@ class Detector {
         Vector3d g;
         const double r = f(x_[i], &g);
         ss += r * r;
-        along += g.dot(n_[i]) > 0;
+        along += g.dot((*n_)[i]) > 0;
       }
       const int n = static_cast<int>(p.points.size());
       p.rms_distance = n > 0 ? std::sqrt(ss / n) : 0.0;
@@ -1105,7 +1142,12 @@ class Detector {
 
  private:
   const std::vector<Vector3d>& x_;
-  std::vector<Vector3d> n_;  // a copy: the leftover pass re-estimates the free points' normals
+  // The normals in use: the input's, the leftover pass's re-estimated ones during that pass,
+  // then (only when that pass assigned points) a copy of the input with those points' new
+  // normals; no copy of the input otherwise (memory: 24 bytes a point each).
+  const std::vector<Vector3d>& input_n_;
+  const std::vector<Vector3d>* n_;
+  std::vector<Vector3d> own_n_;
   const NeighbourGraph& nb_;
   double tau_, cos_, sigma_;
   int min_points_;
