@@ -61,9 +61,10 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points) {
   return t;
 }
 
-PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action) {
+PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action,
+                                    Neighbourhoods* neighbourhoods) {
   std::string action;
-  PointCloud cloud = ReadOrientedCloud(path, &action);
+  PointCloud cloud = ReadOrientedCloud(path, &action, true, nullptr, neighbourhoods);
   if (action.rfind("estimated", 0) == 0) {
     const NormalTrust trust = AssessEstimatedNormals(cloud.points);
     if (!trust.trusted) {

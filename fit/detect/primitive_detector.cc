@@ -13,15 +13,14 @@
 #include <stdexcept>
 #include <thread>
 
+#include "fit/detect/detection_scales.h"
 #include "fit/detect/local_primitive_refit.h"
 #include "fit/primitive/minimal_samples.h"
 #include "fit/detect/patch_hypotheses.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/primitive/primitive_function.h"
 #include "fit/detect/restricted_normals.h"
-#include "fit/detect/surface_noise.h"
 #include "fit/common/thread_count.h"
-#include "model/median.h"
 
 namespace implicitfit {
 namespace {
@@ -43,9 +42,7 @@ constexpr double kKeepFraction = 0.8;       // a candidate is accepted if this m
 constexpr double kSimplerFraction = 0.97;   // a simpler kind explaining this much wins
 constexpr double kMaxRmsSigmas = 2.0;       // a candidate's RMS must stay under this * sigma
 constexpr double kFarFactor = 10.0;         // shapes beyond this many cloud diagonals: degenerate
-constexpr double kMaxNoiseToSpacing = 0.4;  // noisier than this * spacing: a volume, no surface
 constexpr int kFallbackSteps = 3;           // crease points join a primitive this close
-constexpr double kIncoherentNormalDeg = 15.0;  // median neighbour normal angle of a volume
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
 constexpr int kMaxSplitPieces = 3;      // primitives of the split test's alternative
 // A simpler curved kind replaces the winner only if its penalised cost is at most this times
@@ -1103,7 +1100,7 @@ class Detector {
         PrimitiveFitOptions fo;
         fo.kind = p.kind;
         fo.initial = p.parameters;
-        fo.threshold = tau_;
+        fo.start_band = tau_;  // adaptive: the ML refinement re-estimates its band
         fo.normal_cos = cos_;
         fo.num_threads = 1;
         fo.min_inliers = 8;
@@ -1210,42 +1207,15 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   std::vector<Vector3d> x(N);
   for (size_t i = 0; i < N; ++i) x[i] = points[i] - centroid;
 
-  // Noise and normal spread from the neighbourhoods (evenly spread subset of the points).
-  std::vector<double> tangent, angle;
-  const size_t stride = std::max<size_t>(1, N / 20000);
-  for (size_t i = 0; i < N; i += stride) {
-    std::vector<double> d, a;
-    for (size_t k = 0; k < std::min<size_t>(8, neighbours[i].size()); ++k) {
-      const int j = neighbours[i][k];
-      d.push_back(std::abs(normals[i].dot(x[j] - x[i])));
-      a.push_back(std::acos(std::min(1.0, std::abs(normals[i].dot(normals[j])))));
-    }
-    if (d.empty()) continue;
-    tangent.push_back(Median(d));
-    angle.push_back(Median(a));
-  }
-  // The tangent-plane figure (the surface's sagitta included) decides whether the cloud fills a
-  // volume; the bands use the curvature-free noise (mid-normal distances, fit/detect/surface_noise.h).
-  const double tangent_noise = 1.4826 * Median(tangent);
-  result.noise = EstimateSurfaceNoise(x, normals, neighbours, stride);
-  result.threshold =
-      options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
-  const double median_angle_deg = Median(angle) * 180.0 / M_PI;
-  result.normal_angle_deg = options.normal_angle_deg > 0
-                                ? options.normal_angle_deg
-                                : std::clamp(3.0 * median_angle_deg, 20.0, 45.0);
+  const DetectionScales ds = EstimateDetectionScales(x, normals, neighbours, spacing,
+                                                     options.threshold, options.normal_angle_deg);
+  result.noise = ds.noise;
+  result.threshold = ds.threshold;
+  result.normal_angle_deg = ds.normal_angle_deg;
   if (!(result.threshold > 0)) return result;  // all points coincide
-  // Points filling a volume (e.g. uniform random points) lie off any tangent plane by about half
-  // their spacing (measured: 0.58 s) and their normals disagree from one neighbour to the next
-  // (median angle above 15 degrees); sampled surfaces lie far closer (0.05 to 0.15 s on the
-  // benchmark clouds), and a dense scan noisier than its spacing still has coherent normals when
-  // they come from the scanner or a larger scale. A cloud failing both has no surface at its
-  // sampling scale; an explicit threshold overrides this.
-  if (options.threshold <= 0 && tangent_noise > kMaxNoiseToSpacing * spacing &&
-      median_angle_deg > kIncoherentNormalDeg)
-    return result;
+  if (ds.volume) return result;                // no surface at the sampling scale
   const Scales scales{result.threshold, std::cos(result.normal_angle_deg * M_PI / 180.0),
-                      std::clamp(result.noise, result.threshold / 10, result.threshold / 3)};
+                      ds.likelihood_sigma};
 
   Detector detector(x, normals, neighbours, scales, result.min_points, options);
   detector.margin_ = result.threshold + 3.0 * spacing;
