@@ -21,20 +21,8 @@ constexpr double kSimplerFraction = 0.97;
 constexpr double kSimplerCostRatio = 2.0;
 constexpr size_t kMaxKindCheckPoints = 5000;  // points of the kind check (evenly spread)
 
-int DegreesOfFreedom(NodeType kind) {
-  switch (kind) {
-    case NodeType::kPlane:
-      return 3;
-    case NodeType::kSphere:
-      return 4;
-    case NodeType::kCylinder:
-      return 5;
-    case NodeType::kCone:
-      return 6;
-    default:
-      return 7;
-  }
-}
+// Degrees of freedom of a kind (the BIC penalty): plane 3 ... torus 7.
+int DegreesOfFreedom(NodeType kind) { return FreeParameterCount(kind); }
 
 std::vector<int> Spread(const std::vector<int>& v, size_t count) {
   if (v.size() <= count) return v;
