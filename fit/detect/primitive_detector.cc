@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <iterator>
 #include <numeric>
 #include <random>
@@ -20,6 +21,9 @@
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/primitive/primitive_function.h"
 #include "fit/detect/restricted_normals.h"
+#include "fit/detect/surface_merging.h"
+#include "fit/detect/surface_noise.h"
+#include "model/median.h"
 #include "fit/common/thread_count.h"
 
 namespace implicitfit {
@@ -51,6 +55,7 @@ constexpr int kMaxSplitPieces = 3;      // primitives of the split test's altern
 constexpr double kSimplerCostRatio = 2.0;
 constexpr double kRetryBand = 0.5;         // band (x tau) of the retried growth of a candidate
 constexpr int kMinFreeSeedNeighbours = 3;  // leftover pass: free neighbours a seed is checked on
+constexpr double kMaxWidening = 10.0;      // widest local band, in units of the cloud's
 
 // Degrees of freedom of a kind (the BIC penalty).
 int DegreesOfFreedom(NodeType kind) {
@@ -152,11 +157,27 @@ class Detector {
     return line;
   }
 
+  // Point i's widening of the bands and of the likelihood scale (>= 1; 1 without local noise).
+  double W(int i) const { return widen_.empty() ? 1.0 : widen_[i]; }
+  // The truncated-Gaussian cost of a residual r at point i (the kind selection's likelihood).
+  double Cost(double r, int i) const {
+    const double s = sigma_ * W(i);
+    return std::min(r * r / (s * s), (tau_ / sigma_) * (tau_ / sigma_));
+  }
+  // RMS of the residuals of f over s, each over its point's widening: the noise in units of
+  // the cloud's sigma where the noise varies.
+  double WidenedRms(NodeType kind, const std::vector<double>& p, const std::vector<int>& s) const {
+    const PrimitiveFunction f(kind, p);
+    double ss = 0;
+    for (int i : s) ss += std::pow(f(x_[i]) / W(i), 2);
+    return s.empty() ? 0.0 : std::sqrt(ss / s.size());
+  }
+
   bool Supports(const PrimitiveFunction& f, int i) const { return Supports(f, i, tau_); }
   bool Supports(const PrimitiveFunction& f, int i, double band) const {
     Vector3d g;
     const double r = f(x_[i], &g);
-    if (!(std::abs(r) < band)) return false;
+    if (!(std::abs(r) < band * W(i))) return false;
     const double gn = g.norm();
     return gn > 0 && std::abs(g.dot((*n_)[i])) >= cos_ * gn;
   }
@@ -314,7 +335,8 @@ class Detector {
     }
     radius /= static_cast<double>(s.size());
     std::vector<double> q = {mean.x(), mean.y(), mean.z(), a.x(), a.y(), a.z(), radius};
-    const double rms = RefitPrimitiveLocally(NodeType::kCylinder, x_, s, &q, 30);
+    double rms = RefitPrimitiveLocally(NodeType::kCylinder, x_, s, &q, 30);
+    if (rms >= 0 && !widen_.empty()) rms = WidenedRms(NodeType::kCylinder, q, s);
     if (!(rms >= 0 && rms <= kMaxRmsSigmas * sigma_) || !Finite(q) ||
         !Reasonable(NodeType::kCylinder, q))
       return false;
@@ -408,9 +430,10 @@ class Detector {
       }
       // The least-squares fit to the final support (the kind selection compares fitted models).
       std::vector<double> refit = best.params;
-      const double rms =
-          RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
+      const std::vector<int> spread = Spread(best.support, kMaxRefitPoints);
+      double rms = RefitPrimitiveLocally(kind, x_, spread, &refit, 30);
       if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
+      if (rms >= 0 && !widen_.empty()) rms = WidenedRms(kind, best.params, spread);
       // A growth stopped at kMaxGrowthPoints is completed when its candidate is accepted.
       best.band = band;
       best.capped = best.support.size() >= kMaxGrowthPoints;
@@ -489,16 +512,12 @@ class Detector {
     auto allowed = [&](NodeType k) {
       return DegreesOfFreedom(k) < DegreesOfFreedom(kinds[winner]);
     };
-    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     const double ln_u = std::log(static_cast<double>(all.size()));
     auto cost_of = [&](const std::vector<PrimitiveFunction>& pieces, int dof) {
       double cost = 0;
       for (int i : u) {
-        double c = cap;
-        for (const auto& f : pieces) {
-          const double q = f(x_[i]);
-          c = std::min(c, q * q / (sigma_ * sigma_));
-        }
+        double c = INFINITY;
+        for (const auto& f : pieces) c = std::min(c, Cost(f(x_[i]), i));
         cost += c;
       }
       return cost * scale + dof * ln_u;
@@ -575,17 +594,13 @@ class Detector {
     all.erase(std::unique(all.begin(), all.end()), all.end());
     const std::vector<int> u = Spread(all, kMaxCostPoints);
     const double scale = all.size() / static_cast<double>(u.size());
-    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     double best_cost = INFINITY;
     size_t best = 0;
     std::vector<double> costs(grown.size());
     for (size_t k = 0; k < grown.size(); ++k) {
       const PrimitiveFunction f(kinds[k], grown[k].params);
       double cost = 0;
-      for (int i : u) {
-        const double r = f(x_[i]);
-        cost += std::min(r * r / (sigma_ * sigma_), cap);
-      }
+      for (int i : u) cost += Cost(f(x_[i]), i);
       cost = cost * scale + DegreesOfFreedom(kinds[k]) * std::log(static_cast<double>(all.size()));
       costs[k] = cost;
       if (cost < best_cost) best_cost = cost, best = k;
@@ -839,12 +854,8 @@ class Detector {
   double PenalisedCost(NodeType kind, const std::vector<double>& params,
                        const std::vector<int>& s) const {
     const PrimitiveFunction f(kind, params);
-    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     double cost = 0;
-    for (int i : s) {
-      const double r = f(x_[i]);
-      cost += std::min(r * r / (sigma_ * sigma_), cap);
-    }
+    for (int i : s) cost += Cost(f(x_[i]), i);
     return cost +
            DegreesOfFreedom(kind) * std::log(static_cast<double>(std::max<size_t>(2, s.size())));
   }
@@ -924,8 +935,7 @@ class Detector {
       for (size_t m = 0; m < s.size(); ++m) {
         for (int o = 0; o < K; ++o) {
           if (o == k || !Supports(fs[o], s[m])) continue;
-          const double r = fs[o](x_[s[m]]);
-          other[m] = std::min(other[m], r * r / (sigma_ * sigma_));
+          other[m] = std::min(other[m], Cost(fs[o](x_[s[m]]), s[m]));
         }
         own += other[m] == cap;
       }
@@ -935,8 +945,7 @@ class Detector {
         const PrimitiveFunction f(kind, q);
         double c = 0;
         for (size_t m = 0; m < s.size(); ++m) {
-          const double r = f(x_[s[m]]);
-          c += std::min(other[m], r * r / (sigma_ * sigma_));
+          c += std::min(other[m], Cost(f(x_[s[m]]), s[m]));
         }
         return c * p.points.size() / s.size() + DegreesOfFreedom(kind) * penalty;
       };
@@ -998,10 +1007,12 @@ class Detector {
     // Boxes of the supports, widened by tau and a few spacings (reassigned points lie next to
     // them).
     std::vector<Eigen::AlignedBox3d> boxes(K);
+    std::vector<double> bands(K, tau_);  // a merged plane's own band (fit/detect/surface_merging.h)
     for (int k = 0; k < K; ++k) {
+      if (k < static_cast<int>(band_.size())) bands[k] = std::max(tau_, band_[k]);
       for (int i : primitives_[k].points) boxes[k].extend(x_[i]);
-      boxes[k].min().array() -= margin_;
-      boxes[k].max().array() += margin_;
+      boxes[k].min().array() -= margin_ + bands[k];
+      boxes[k].max().array() += margin_ + bands[k];
     }
     std::vector<PrimitiveFunction> fs;
     for (const auto& p : primitives_) fs.emplace_back(p.kind, p.parameters);
@@ -1017,15 +1028,17 @@ class Detector {
         // it), then the normal closer to grad f wins. Among agreeing normals (labels), and among
         // all within tau (fallback).
         auto better = [&](double r, double cos, int current, double best_r, double best_cos) {
-          return current < 0 || r < best_r - sigma_ || (r < best_r + sigma_ && cos > best_cos);
+          const double s = sigma_ * W(i);
+          return current < 0 || r < best_r - s || (r < best_r + s && cos > best_cos);
         };
-        double best = tau_, best_cos = 0, best_any = tau_, best_any_cos = 0;
+        const double band = tau_ * W(i);
+        double best = band, best_cos = 0, best_any = band, best_any_cos = 0;
         for (int k = 0; k < K; ++k) {
           if (!boxes[k].contains(x_[i])) continue;
           Vector3d g;
           const double r = std::abs(fs[k](x_[i], &g));
           const double gn = g.norm();
-          if (!(r < tau_) || !(gn > 0)) continue;
+          if (!(r < std::max(band, bands[k])) || !(gn > 0)) continue;
           const double cos = std::abs(g.dot((*n_)[i])) / gn;
           if (cos >= cos_ && better(r, cos, labels[i], best, best_cos))
             best = r, best_cos = cos, labels[i] = k;
@@ -1065,8 +1078,16 @@ class Detector {
       if (static_cast<int>(q.size()) > best_size[labels[i]])
         best_size[labels[i]] = static_cast<int>(q.size()), best_component[labels[i]] = id;
     }
+    // Merged planes (several pieces of one wall) keep every part of the smallest primitive's
+    // size; the others their largest.
+    std::vector<int> component_size(next, 0);
     for (int i = 0; i < N; ++i)
-      if (labels[i] >= 0 && component[i] != best_component[labels[i]]) labels[i] = -1;
+      if (labels[i] >= 0) ++component_size[component[i]];
+    for (int i = 0; i < N; ++i) {
+      if (labels[i] < 0 || component[i] == best_component[labels[i]]) continue;
+      const bool multi = labels[i] < static_cast<int>(multi_part_.size()) && multi_part_[labels[i]];
+      if (!(multi && component_size[component[i]] >= min_points_)) labels[i] = -1;
+    }
     std::vector<int> order;
     for (int k = 0; k < K; ++k)
       if (best_size[k] >= min_points_) order.push_back(k);
@@ -1082,6 +1103,15 @@ class Detector {
     }
     primitives_ = std::move(kept);
     labels_ = std::move(labels);
+  }
+
+  // The final "one surface or two" (fit/detect/surface_merging.h): planes of two parallel sheets
+  // split, pieces of one plane merged. Returns {splits, merges}.
+  std::pair<int, int> SplitAndMergeSurfaces() {
+    const SurfaceMergeContext c{x_, *n_, nb_, tau_, cos_, min_points_};
+    const int splits = SplitParallelSheets(c, &primitives_, &labels_);
+    const int merges = MergeSameSurfaces(c, &primitives_, &labels_, &band_, &multi_part_);
+    return {splits, merges};
   }
 
   // Maximum-likelihood refinement of `fit` on each primitive's points, then its figures.
@@ -1134,6 +1164,12 @@ class Detector {
   }
 
   double margin_ = 0.0, diagonal_ = 0.0;
+  // Per-point widening of the bands and the likelihood scale where the local noise exceeds the
+  // cloud's (empty: none anywhere); see DetectPrimitives.
+  std::vector<float> widen_;
+  // Per primitive after the surface merge: its band and whether it is made of several pieces.
+  std::vector<double> band_;
+  std::vector<char> multi_part_;
   std::vector<DetectedPrimitive> primitives_;
   const std::vector<int>& labels() const { return labels_; }
 
@@ -1152,6 +1188,39 @@ class Detector {
   std::vector<int> labels_;
   bool leftover_pass_ = false;
 };
+
+// Where the noise varies (real scans: a multi-view stereo building reads 10 times more noise on
+// some walls than on others), a point whose local noise sigma_i (fit/detect/surface_noise.h:
+// LocalSurfaceNoise, a two-ring median) exceeds the cloud's sigma by more than tau / 3 gets its
+// bands and likelihood scale widened by w_i = 3 (sigma_i - sigma) / tau, at most kMaxWidening,
+// when its normal agrees with its neighbours' (median angle within the normal band: a noisy
+// surface, not scattered outliers). Elsewhere w_i = 1: a cloud of uniform noise reads sigma_i
+// about sigma everywhere and keeps the global bands (empty result: nothing widened).
+std::vector<float> LocalWidening(const std::vector<Vector3d>& x, const std::vector<Vector3d>& n,
+                                 const NeighbourGraph& nb, const DetectionScales& ds) {
+  const std::vector<float> local = LocalSurfaceNoise(x, n, nb);
+  const double cos_theta = std::cos(ds.normal_angle_deg * M_PI / 180.0);
+  std::vector<float> w(x.size(), 1.0f);
+  bool any = false;
+  std::vector<double> a;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double wi = 3.0 * (local[i] - ds.noise) / ds.threshold;
+    if (!(wi > 1.0)) continue;
+    a.clear();
+    for (size_t k = 0; k < std::min<size_t>(8, nb[i].size()); ++k)
+      a.push_back(std::abs(n[i].dot(n[nb[i][k]])));
+    if (a.empty() || Median(a) < cos_theta) continue;
+    w[i] = static_cast<float>(std::min(wi, kMaxWidening));
+    any = true;
+  }
+  if (!any) w.clear();
+  if (const char* dbg = std::getenv("IMPLICITFIT_DEBUG_WIDEN")) {  // TEMPORARY
+    FILE* f = std::fopen(dbg, "w");
+    for (size_t i = 0; i < x.size(); ++i) std::fprintf(f, "%g %g\n", local[i], w.empty() ? 1.0 : w[i]);
+    std::fclose(f);
+  }
+  return w;
+}
 
 }  // namespace
 
@@ -1218,7 +1287,14 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
                       ds.likelihood_sigma};
 
   Detector detector(x, normals, neighbours, scales, result.min_points, options);
-  detector.margin_ = result.threshold + 3.0 * spacing;
+  detector.widen_ = LocalWidening(x, normals, neighbours, ds);
+  float widest = 1.0f;
+  size_t widened = 0;
+  for (float w : detector.widen_) widest = std::max(widest, w), widened += w > 1.0f;
+  if (options.progress && widened > 0)
+    options.progress("bands widened by the local noise at " + std::to_string(widened) +
+                     " points (up to " + std::to_string(widest) + " x)");
+  detector.margin_ = widest * result.threshold + 3.0 * spacing;
   {
     Eigen::AlignedBox3d box;
     for (const auto& p : x) box.extend(p);
@@ -1238,6 +1314,9 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   result.simplified = detector.Simplify();
   result.merges = detector.Merge();
   result.simplified += detector.Rekind();
+  const auto [splits, surface_merges] = detector.SplitAndMergeSurfaces();
+  result.splits = splits;
+  result.merges += surface_merges;
   detector.Reassign();
   detector.Refine();
 

@@ -125,7 +125,7 @@ struct DetectionResult {
   std::vector<double> residuals;              // per point: f of its primitive (0 when none)
   double spacing = 0.0, noise = 0.0, threshold = 0.0, normal_angle_deg = 0.0;
   int min_points = 0;
-  int seeds = 0, candidates_accepted = 0, merges = 0, simplified = 0;
+  int seeds = 0, candidates_accepted = 0, merges = 0, simplified = 0, splits = 0;
   double seconds = 0.0;
 };
 
