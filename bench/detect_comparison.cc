@@ -3,7 +3,8 @@
 //   estimated as a user's run would (PCA + MST orientation) and with normals from the ground-
 //   truth surfaces (gradients of the implicit equations; tori: grad of the torus fitted to their
 //   labelled points), CGAL's labelled icosahedron, and generated scenes
-//   (datasets/generators/scene_generator.h: six primitives, noise 0.005, 10% outliers).
+//   (datasets/generators/scene_generator.h: six primitives, noise 0.005, 10% outliers), CGAL's ten
+//   spheres and PCL's sphere cap (labels from reference spheres, normals estimated).
 // Per cloud and method: recall, precision, mean IoU, kind accuracy, coverage
 // (fit/detect/segmentation_metrics.h, primitives with >= 1% of the points), parameter error (RMS of the
 // detected f over each recovered ground-truth primitive's points, over the bbox diagonal;
@@ -214,6 +215,41 @@ int main(int argc, char** argv) {
       c.kinds.assign(20, NodeType::kPlane);
       cases.push_back(c);
     }
+  }
+  // CGAL's ten spheres and PCL's sphere cap: labels from the reference spheres fitted to them
+  // (cgal/reference_spheres.txt: algebraic fits, RMS <= 3e-7; a point belongs to the sphere it
+  // lies on within 1e-4 of the cloud's diagonal, -1 otherwise). Normals estimated.
+  for (const auto& [file, name] :
+       {std::pair<std::string, std::string>{"cgal/cgal_spheres_10.ply", "CGAL 10 spheres"},
+        {"pcl/pcl_cturtle_sphere_cap_r2.ply", "PCL sphere cap (cturtle)"}}) {
+    const std::string path = data + "/" + file;
+    std::ifstream ref(data + "/cgal/reference_spheres.txt");
+    if (!std::ifstream(path) || !ref) continue;
+    const std::string stem = file.substr(file.find('/') + 1, file.rfind('.') - file.find('/') - 1);
+    std::vector<Eigen::Vector4d> spheres;
+    for (std::string line; std::getline(ref, line);) {
+      char f[256];
+      double cx, cy, cz, r;
+      if (line.empty() || line[0] == '#' ||
+          std::sscanf(line.c_str(), "%255s %lf %lf %lf %lf", f, &cx, &cy, &cz, &r) != 5)
+        continue;
+      const std::string fs = f;
+      if (fs.find(stem) != std::string::npos) spheres.emplace_back(cx, cy, cz, r);
+    }
+    if (spheres.empty()) continue;
+    Case c;
+    c.name = name;
+    c.cloud = ReadCloudFile(path);
+    c.cloud.normals.clear();
+    EnsureOrientedNormals(&c.cloud);
+    const double tol = 1e-4 * Diagonal(c.cloud);
+    c.labels.assign(c.cloud.size(), -1);
+    for (size_t i = 0; i < c.cloud.size(); ++i)
+      for (size_t k = 0; k < spheres.size(); ++k)
+        if (std::abs((c.cloud.points[i] - spheres[k].head<3>()).norm() - spheres[k][3]) < tol)
+          c.labels[i] = static_cast<int>(k);
+    c.kinds.assign(spheres.size(), NodeType::kSphere);
+    cases.push_back(c);
   }
   for (unsigned seed = 1; seed <= (quick ? 1u : 3u); ++seed) {
     GeneratedSceneOptions o;

@@ -6,7 +6,7 @@
 // On an evenly sampled surface, radius 2s holds about 4 x 6 = 24 neighbours; sparse regions
 // fall back to min_k, dense ones are capped at max_k. The search runs on coordinates recentred
 // at the centroid, so far-off clouds (UTM, ~1e6) lose no precision. The queries run in blocks
-// on all cores, each writing its points' rows of the graph in place (model/neighbour_graph.h):
+// on all cores, each writing its points' rows of the graph in place (datasets/clouds/neighbour_graph.h):
 // the search holds the graph, the k-d tree and one block of results, about 200 bytes a point
 // at max_k = 30. The result does not depend on the thread count.
 #pragma once
@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "model/neighbour_graph.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 

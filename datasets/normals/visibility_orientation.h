@@ -27,7 +27,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "model/neighbour_graph.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 

@@ -227,7 +227,7 @@ CheckedFit FitCheckedPrimitive(const std::vector<Eigen::Vector3d>& points,
     out.result = FitPrimitive(points, normals, options);
     return out;
   }
-  Cloud c{{}, normals, neighbours};
+  Cloud c{{}, normals, neighbours, Eigen::Vector3d::Zero(), {}, 1.0};
   for (const auto& p : points) c.centroid += p;
   c.centroid /= static_cast<double>(points.size());
   c.x.reserve(points.size());

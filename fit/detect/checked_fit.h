@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "fit/primitive/primitive_fitter.h"
-#include "model/neighbour_graph.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 

@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "model/neighbour_graph.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <iterator>
 #include <numeric>
 #include <random>
@@ -22,8 +21,6 @@
 #include "fit/primitive/primitive_function.h"
 #include "fit/detect/restricted_normals.h"
 #include "fit/detect/surface_merging.h"
-#include "fit/detect/surface_noise.h"
-#include "model/median.h"
 #include "fit/common/thread_count.h"
 
 namespace implicitfit {
@@ -55,7 +52,6 @@ constexpr int kMaxSplitPieces = 3;      // primitives of the split test's altern
 constexpr double kSimplerCostRatio = 2.0;
 constexpr double kRetryBand = 0.5;         // band (x tau) of the retried growth of a candidate
 constexpr int kMinFreeSeedNeighbours = 3;  // leftover pass: free neighbours a seed is checked on
-constexpr double kMaxWidening = 10.0;      // widest local band, in units of the cloud's
 
 // Degrees of freedom of a kind (the BIC penalty).
 int DegreesOfFreedom(NodeType kind) {
@@ -157,27 +153,16 @@ class Detector {
     return line;
   }
 
-  // Point i's widening of the bands and of the likelihood scale (>= 1; 1 without local noise).
-  double W(int i) const { return widen_.empty() ? 1.0 : widen_[i]; }
-  // The truncated-Gaussian cost of a residual r at point i (the kind selection's likelihood).
-  double Cost(double r, int i) const {
-    const double s = sigma_ * W(i);
-    return std::min(r * r / (s * s), (tau_ / sigma_) * (tau_ / sigma_));
-  }
-  // RMS of the residuals of f over s, each over its point's widening: the noise in units of
-  // the cloud's sigma where the noise varies.
-  double WidenedRms(NodeType kind, const std::vector<double>& p, const std::vector<int>& s) const {
-    const PrimitiveFunction f(kind, p);
-    double ss = 0;
-    for (int i : s) ss += std::pow(f(x_[i]) / W(i), 2);
-    return s.empty() ? 0.0 : std::sqrt(ss / s.size());
+  // The truncated-Gaussian cost of a residual r (the kind selection's likelihood).
+  double Cost(double r) const {
+    return std::min(r * r / (sigma_ * sigma_), (tau_ / sigma_) * (tau_ / sigma_));
   }
 
   bool Supports(const PrimitiveFunction& f, int i) const { return Supports(f, i, tau_); }
   bool Supports(const PrimitiveFunction& f, int i, double band) const {
     Vector3d g;
     const double r = f(x_[i], &g);
-    if (!(std::abs(r) < band * W(i))) return false;
+    if (!(std::abs(r) < band)) return false;
     const double gn = g.norm();
     return gn > 0 && std::abs(g.dot((*n_)[i])) >= cos_ * gn;
   }
@@ -335,8 +320,7 @@ class Detector {
     }
     radius /= static_cast<double>(s.size());
     std::vector<double> q = {mean.x(), mean.y(), mean.z(), a.x(), a.y(), a.z(), radius};
-    double rms = RefitPrimitiveLocally(NodeType::kCylinder, x_, s, &q, 30);
-    if (rms >= 0 && !widen_.empty()) rms = WidenedRms(NodeType::kCylinder, q, s);
+    const double rms = RefitPrimitiveLocally(NodeType::kCylinder, x_, s, &q, 30);
     if (!(rms >= 0 && rms <= kMaxRmsSigmas * sigma_) || !Finite(q) ||
         !Reasonable(NodeType::kCylinder, q))
       return false;
@@ -431,9 +415,8 @@ class Detector {
       // The least-squares fit to the final support (the kind selection compares fitted models).
       std::vector<double> refit = best.params;
       const std::vector<int> spread = Spread(best.support, kMaxRefitPoints);
-      double rms = RefitPrimitiveLocally(kind, x_, spread, &refit, 30);
+      const double rms = RefitPrimitiveLocally(kind, x_, spread, &refit, 30);
       if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
-      if (rms >= 0 && !widen_.empty()) rms = WidenedRms(kind, best.params, spread);
       // A growth stopped at kMaxGrowthPoints is completed when its candidate is accepted.
       best.band = band;
       best.capped = best.support.size() >= kMaxGrowthPoints;
@@ -516,8 +499,8 @@ class Detector {
     auto cost_of = [&](const std::vector<PrimitiveFunction>& pieces, int dof) {
       double cost = 0;
       for (int i : u) {
-        double c = INFINITY;
-        for (const auto& f : pieces) c = std::min(c, Cost(f(x_[i]), i));
+        double c = Cost(INFINITY);  // the cap
+        for (const auto& f : pieces) c = std::min(c, Cost(f(x_[i])));
         cost += c;
       }
       return cost * scale + dof * ln_u;
@@ -600,7 +583,7 @@ class Detector {
     for (size_t k = 0; k < grown.size(); ++k) {
       const PrimitiveFunction f(kinds[k], grown[k].params);
       double cost = 0;
-      for (int i : u) cost += Cost(f(x_[i]), i);
+      for (int i : u) cost += Cost(f(x_[i]));
       cost = cost * scale + DegreesOfFreedom(kinds[k]) * std::log(static_cast<double>(all.size()));
       costs[k] = cost;
       if (cost < best_cost) best_cost = cost, best = k;
@@ -855,7 +838,7 @@ class Detector {
                        const std::vector<int>& s) const {
     const PrimitiveFunction f(kind, params);
     double cost = 0;
-    for (int i : s) cost += Cost(f(x_[i]), i);
+    for (int i : s) cost += Cost(f(x_[i]));
     return cost +
            DegreesOfFreedom(kind) * std::log(static_cast<double>(std::max<size_t>(2, s.size())));
   }
@@ -935,7 +918,7 @@ class Detector {
       for (size_t m = 0; m < s.size(); ++m) {
         for (int o = 0; o < K; ++o) {
           if (o == k || !Supports(fs[o], s[m])) continue;
-          other[m] = std::min(other[m], Cost(fs[o](x_[s[m]]), s[m]));
+          other[m] = std::min(other[m], Cost(fs[o](x_[s[m]])));
         }
         own += other[m] == cap;
       }
@@ -945,7 +928,7 @@ class Detector {
         const PrimitiveFunction f(kind, q);
         double c = 0;
         for (size_t m = 0; m < s.size(); ++m) {
-          c += std::min(other[m], Cost(f(x_[s[m]]), s[m]));
+          c += std::min(other[m], Cost(f(x_[s[m]])));
         }
         return c * p.points.size() / s.size() + DegreesOfFreedom(kind) * penalty;
       };
@@ -1028,17 +1011,15 @@ class Detector {
         // it), then the normal closer to grad f wins. Among agreeing normals (labels), and among
         // all within tau (fallback).
         auto better = [&](double r, double cos, int current, double best_r, double best_cos) {
-          const double s = sigma_ * W(i);
-          return current < 0 || r < best_r - s || (r < best_r + s && cos > best_cos);
+          return current < 0 || r < best_r - sigma_ || (r < best_r + sigma_ && cos > best_cos);
         };
-        const double band = tau_ * W(i);
-        double best = band, best_cos = 0, best_any = band, best_any_cos = 0;
+        double best = tau_, best_cos = 0, best_any = tau_, best_any_cos = 0;
         for (int k = 0; k < K; ++k) {
           if (!boxes[k].contains(x_[i])) continue;
           Vector3d g;
           const double r = std::abs(fs[k](x_[i], &g));
           const double gn = g.norm();
-          if (!(r < std::max(band, bands[k])) || !(gn > 0)) continue;
+          if (!(r < bands[k]) || !(gn > 0)) continue;
           const double cos = std::abs(g.dot((*n_)[i])) / gn;
           if (cos >= cos_ && better(r, cos, labels[i], best, best_cos))
             best = r, best_cos = cos, labels[i] = k;
@@ -1164,9 +1145,6 @@ class Detector {
   }
 
   double margin_ = 0.0, diagonal_ = 0.0;
-  // Per-point widening of the bands and the likelihood scale where the local noise exceeds the
-  // cloud's (empty: none anywhere); see DetectPrimitives.
-  std::vector<float> widen_;
   // Per primitive after the surface merge: its band and whether it is made of several pieces.
   std::vector<double> band_;
   std::vector<char> multi_part_;
@@ -1188,39 +1166,6 @@ class Detector {
   std::vector<int> labels_;
   bool leftover_pass_ = false;
 };
-
-// Where the noise varies (real scans: a multi-view stereo building reads 10 times more noise on
-// some walls than on others), a point whose local noise sigma_i (fit/detect/surface_noise.h:
-// LocalSurfaceNoise, a two-ring median) exceeds the cloud's sigma by more than tau / 3 gets its
-// bands and likelihood scale widened by w_i = 3 (sigma_i - sigma) / tau, at most kMaxWidening,
-// when its normal agrees with its neighbours' (median angle within the normal band: a noisy
-// surface, not scattered outliers). Elsewhere w_i = 1: a cloud of uniform noise reads sigma_i
-// about sigma everywhere and keeps the global bands (empty result: nothing widened).
-std::vector<float> LocalWidening(const std::vector<Vector3d>& x, const std::vector<Vector3d>& n,
-                                 const NeighbourGraph& nb, const DetectionScales& ds) {
-  const std::vector<float> local = LocalSurfaceNoise(x, n, nb);
-  const double cos_theta = std::cos(ds.normal_angle_deg * M_PI / 180.0);
-  std::vector<float> w(x.size(), 1.0f);
-  bool any = false;
-  std::vector<double> a;
-  for (size_t i = 0; i < x.size(); ++i) {
-    const double wi = 3.0 * (local[i] - ds.noise) / ds.threshold;
-    if (!(wi > 1.0)) continue;
-    a.clear();
-    for (size_t k = 0; k < std::min<size_t>(8, nb[i].size()); ++k)
-      a.push_back(std::abs(n[i].dot(n[nb[i][k]])));
-    if (a.empty() || Median(a) < cos_theta) continue;
-    w[i] = static_cast<float>(std::min(wi, kMaxWidening));
-    any = true;
-  }
-  if (!any) w.clear();
-  if (const char* dbg = std::getenv("IMPLICITFIT_DEBUG_WIDEN")) {  // TEMPORARY
-    FILE* f = std::fopen(dbg, "w");
-    for (size_t i = 0; i < x.size(); ++i) std::fprintf(f, "%g %g\n", local[i], w.empty() ? 1.0 : w[i]);
-    std::fclose(f);
-  }
-  return w;
-}
 
 }  // namespace
 
@@ -1287,14 +1232,7 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
                       ds.likelihood_sigma};
 
   Detector detector(x, normals, neighbours, scales, result.min_points, options);
-  detector.widen_ = LocalWidening(x, normals, neighbours, ds);
-  float widest = 1.0f;
-  size_t widened = 0;
-  for (float w : detector.widen_) widest = std::max(widest, w), widened += w > 1.0f;
-  if (options.progress && widened > 0)
-    options.progress("bands widened by the local noise at " + std::to_string(widened) +
-                     " points (up to " + std::to_string(widest) + " x)");
-  detector.margin_ = widest * result.threshold + 3.0 * spacing;
+  detector.margin_ = result.threshold + 3.0 * spacing;
   {
     Eigen::AlignedBox3d box;
     for (const auto& p : x) box.extend(p);

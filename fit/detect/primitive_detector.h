@@ -85,7 +85,7 @@
 #include <vector>
 
 #include "model/model.h"
-#include "model/neighbour_graph.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 

@@ -40,24 +40,4 @@ double EstimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points,
   return 1.4826 * Median(figures);
 }
 
-std::vector<float> LocalSurfaceNoise(const std::vector<Eigen::Vector3d>& points,
-                                     const std::vector<Eigen::Vector3d>& normals,
-                                     const NeighbourGraph& neighbours) {
-  const size_t N = points.size();
-  std::vector<float> raw(N, -1.0f), out(N, 0.0f);
-  std::vector<double> e;
-  double figure = 0;
-  for (size_t i = 0; i < N; ++i)
-    if (MidNormalFigure(points, normals, neighbours, i, &e, &figure))
-      raw[i] = static_cast<float>(figure);
-  for (size_t i = 0; i < N; ++i) {
-    e.clear();
-    if (raw[i] >= 0) e.push_back(raw[i]);
-    for (int j : neighbours[i])
-      if (raw[j] >= 0) e.push_back(raw[j]);
-    out[i] = e.empty() ? 0.0f : static_cast<float>(1.4826 * Median(e));
-  }
-  return out;
-}
-
 }  // namespace implicitfit

@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "model/neighbour_graph.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 
@@ -24,14 +24,5 @@ namespace implicitfit {
 double EstimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points,
                             const std::vector<Eigen::Vector3d>& normals,
                             const NeighbourGraph& neighbours, size_t stride = 1);
-
-// The same figure per point, for clouds whose noise varies (real scans: 10 times across a
-// multi-view stereo scan of a building): e_i = the median over point i's first 8 neighbours of
-// |(n_i + n_j) / 2 . (p_j - p_i)|, then sigma_i = 1.4826 x the median of e over i and all its
-// neighbours (a second ring, so that one point's figure does not decide). On a cloud of uniform
-// noise sigma_i scatters around EstimateSurfaceNoise's figure.
-std::vector<float> LocalSurfaceNoise(const std::vector<Eigen::Vector3d>& points,
-                                     const std::vector<Eigen::Vector3d>& normals,
-                                     const NeighbourGraph& neighbours);
 
 }  // namespace implicitfit
