@@ -12,6 +12,7 @@
 
 #include "apps/command.h"
 #include "apps/detect_job.h"
+#include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 
@@ -19,7 +20,7 @@ namespace implicitfit {
 namespace {
 
 struct DetectArgs {
-  std::string cloud, out, labels, ply, report, kinds = "plane,sphere,cylinder,cone,torus";
+  std::string cloud, out, labels, ply, view, report, kinds = "plane,sphere,cylinder,cone,torus";
   double threshold = 0.0;
   int min_points = 0, threads = 0;
   unsigned seed = 1;
@@ -42,6 +43,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--ply", a->ply,
                   "Segmented cloud: PLY with double coordinates, normals, a colour per primitive, "
                   "label (and scalar_label) and scalar_residual");
+  cmd->add_option("--view", a->view, "A page of the segmentation (docs/view.md)");
   cmd->add_option("--report", a->report,
                   "JSON report (scales estimated from the cloud, counts, time, score)");
   cmd->add_option("--kinds", a->kinds, "Kinds to detect, comma separated (default: all five)");
@@ -96,6 +98,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
       return 1;
     }
     WriteDetection(d, a->out, a->labels, a->ply);
+    if (!a->view.empty()) WriteDetectionView(d, a->view);
     for (const ScenePrimitive& p : d.scene.primitives)
       std::printf("%s %s points %d rms %.6g normals %s\n", p.name.c_str(),
                   NodeTypeName(p.model.nodes()[0].type), p.points, p.rms_distance,

@@ -1,4 +1,4 @@
-// Issue #12 certificates per second (one thread) on the README's random patches
+// Issue #12 certificates per second (one thread) on docs/convexity.md's random patches
 // (tests/support/random_patches.h over the regular tetrahedron (1,1,1), (1,-1,-1), (-1,1,-1),
 // (-1,-1,1)): the label-invariant margin (G-2), the tangent-restricted certificate with its
 // search over c (G-4 a), the subdivision verdict locally_convex (G-4 b), and the tree

@@ -68,7 +68,7 @@ void BindModel(py::module_& m) {
                     "An implicit surface model: f(x) < 0 inside, f > 0 outside, grad f outward.\n"
                     "Create it with Model.from_json / Model.load, or get it from fit().")
       .def_static("from_json", &FromJson, py::arg("text"),
-                  "The model of a model-file JSON text (README \"Model file\"); ValueError when "
+                  "The model of a model-file JSON text (docs/model-file.md); ValueError when "
                   "invalid, naming the offending field.")
       .def_static(
           "load", [](const std::filesystem::path& path) { return ReadModelFile(path.string()); },

@@ -1,5 +1,5 @@
 // The `implicitfit` Python module: the library's fits, models and clouds with NumPy arrays in
-// and out (README "Python"). Errors become Python exceptions with the command line's messages:
+// and out (docs/python.md). Errors become Python exceptions with the command line's messages:
 //   InputError (a file cannot be read or written, or is invalid)  -> OSError
 //   ModelFormatError, std::invalid_argument (invalid values)       -> ValueError
 //   other std::runtime_error (e.g. sampling cannot reach the zero set) -> RuntimeError

@@ -38,6 +38,9 @@ struct CloudFileInfo {
   // empty. One per returned point (dropped records dropped here too). Such fields are still
   // listed in ignored_properties: the reading itself does not use them.
   std::vector<int> labels;
+  // Per-point "residual" (or "scalar_residual") property of PLY/PCD files (`detect --ply`,
+  // `fit --ply`); empty otherwise.
+  std::vector<double> residuals;
 };
 
 }  // namespace implicitfit

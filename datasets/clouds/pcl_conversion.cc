@@ -85,6 +85,10 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
   const pcl::PCLPointField* label = nullptr;
   for (const char* name : {"label", "scalar_label", "segment_index"})
     if (!label && (label = FindField(blob, name)) && label->count > 1) label = nullptr;
+  // Kept beside the points for viewers (view/): a segmentation's residuals ("scalar_residual":
+  // the CloudCompare name `detect --ply` writes).
+  const pcl::PCLPointField* residual = FindField(blob, "residual");
+  if (!residual) residual = FindField(blob, "scalar_residual");
   // The readers have already checked the sizes against the header; this guards the offsets.
   for (const pcl::PCLPointField& f : blob.fields) {
     if (FieldSize(f.datatype) == 0)
@@ -131,6 +135,7 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
                         std::abs(v) < 2147483647.0;
       out.labels.push_back(integral_labels ? static_cast<int>(v) : -1);
     }
+    if (residual) out.residuals.push_back(FieldValue(record + residual->offset, residual->datatype));
     if (has_normals) {
       Eigen::Vector3d n;
       for (int k = 0; k < 3; ++k) n[k] = FieldValue(record + nxyz[k]->offset, nxyz[k]->datatype);

@@ -55,7 +55,7 @@ void ConvexQuadricControlPoints(const T* z, double margin, T* b) {
     }
   const T b4[3] = {z[6], z[7], z[8]};
   const T b44 = z[9];
-  // DESIGN order: 2000 1100 1010 1001 0200 0110 0101 0020 0011 0002
+  // docs/design.md order: 2000 1100 1010 1001 0200 0110 0101 0020 0011 0002
   auto pair = [&](int i, int j) { return A[i][j] - b44 + b4[i] + b4[j]; };
   b[0] = pair(0, 0);
   b[1] = pair(0, 1);

@@ -1,5 +1,5 @@
-// Smooth absolute value, smooth max and the smooth CSG operators of Li & Phillips (docs/maths.md LP;
-// eq. 4-6), with the slips of the paper corrected (docs/maths.md).
+// Smooth absolute value, smooth max and the smooth CSG operators of Li & Phillips (eq. 4-6;
+// docs/maths.md, "Smooth absolute value, smooth max and CSG"), with the paper's slips corrected.
 //
 //   mu(t)  = H_n(t / eps)                     (rising range eps, 0 < eps <= delta)
 //   g0(t)  = 1 - mu(t + delta),  g1(t) = mu(t + delta) (1 - mu(t - delta)),  g2(t) = mu(t - delta)

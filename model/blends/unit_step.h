@@ -1,5 +1,5 @@
-// Piecewise-polynomial smooth unit step functions of Li & Phillips (eq. 2-3, Def. 2; docs/maths.md).
-//
+// Piecewise-polynomial smooth unit step functions of Li & Phillips (eq. 2-3, Def. 2; docs/maths.md,
+// "Smooth unit steps").
 //   f_0 = Heaviside (f_0(0) = 1/2),  f_n(s) = s/n f_{n-1}(s) + (1 - s/n) f_{n-1}(s - 1),
 //   H_n(t) = f_n(n (t + 1) / 2),      mu_eps(t) = H_n(t / eps).
 //

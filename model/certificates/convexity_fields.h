@@ -1,4 +1,4 @@
-// The additive fields of `implicitfit check --json` and Python check() for issue #12
+// The additive fields of `implicitfit check --json` and Python check()
 // (docs/maths.md LP-4 c, G-2, G-3, G-4), kept apart from check_command.cc:
 //   per file:  "tree": {"class", "certified", "domain"} and "nodes": [{"node", "type", "class",
 //              "rule", "domain"}] (model/certificates/tree_certificate.h);

@@ -39,7 +39,7 @@ TangentPlaneTestResult TangentPlaneTest(int k, const Tetrahedron& tetrahedron,
                                         const double* control_points,
                                         const TangentPlaneTestOptions& options = {});
 
-// The same test for any model over an axis-aligned box (NOTES LP-4 c): segments between uniform
+// The same test for any model over an axis-aligned box (docs/maths.md LP-4 c): segments between uniform
 // random points of the box, L = the box diagonal, gradients by Model::Gradient; zero points with
 // |grad f| L <= 1e-9 (|f| scale unknown) are skipped. It tests the solid {f <= 0} inside the box.
 TangentPlaneTestResult TangentPlaneTest(const Model& model, const Eigen::Vector3d& box_min,

@@ -22,7 +22,7 @@
 //   intersection, "smoothing": "convex", n >= 1: S^c_max is convex and nondecreasing in both
 //     arguments, so S^c_max of convex functions is convex (convex solids alone: not certified);
 //   intersection with Li-Phillips smoothing (n >= 1): not certified (S_max is neither convex
-//     nor monotone, NOTES §0.3); union, difference: not certified.
+//     nor monotone, docs/maths.md LP-4 a); union, difference: not certified.
 // A convex function on domain D certifies the solid within D; domains combine by intersection.
 #pragma once
 

@@ -9,7 +9,7 @@
 // Nesting: a tree deeper than kMaxModelDepth levels (the root is level 1) is refused, with the
 // path of the first node too deep (shortened in the middle), so that reading and every recursive
 // walk over the tree (evaluation, parameters, sampling) stay far from the stack's limit.
-// Extension (documented in the README): any node may carry "fixed": [field names], the
+// Extension (documented in docs/model-file.md): any node may carry "fixed": [field names], the
 // parameters a fitter keeps constant.
 #pragma once
 

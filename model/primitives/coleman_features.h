@@ -1,4 +1,4 @@
-// Coleman's feature-based shaping (docs/maths.md CO-2, slips of §2.2 applied), project
+// Coleman's feature-based shaping (docs/maths.md CO-2, the paper's slips corrected), project
 // sign. The one child's f is a signed distance to the core C (plane, sphere, skeleton_offset,
 // ...); d(x) = max(f(x), 0) and c(x) = x - d(x) grad d(x) its closest core point (grad by central
 // differences of the child, step 1e-6 (1 + |x|)). With the falloff (App. A, one cubic piece, C^1)

@@ -11,7 +11,7 @@
 //                   draw from (datasets/generators/model_sampler.h)
 // The fit side of a kind (closed-form derivatives, hypotheses from a minimal sample, the
 // sample size) is its row in fit/primitive/fittable_primitives.h.
-// Adding a primitive kind: README.md, "Adding a primitive kind".
+// Adding a primitive kind: docs/library.md, "Adding a primitive kind".
 #pragma once
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 // `implicitfit check` on whole model trees and the additive fields of issue #12: the witness
-// tree of NOTES §0.3 is not certified (exit 1; --patches-only keeps the old vacuous verdict), a
+// tree of docs/maths.md LP-4 a is not certified (exit 1; --patches-only keeps the old vacuous verdict), a
 // convex-smoothing intersection of planes and a sphere is; patches carry the G-2/G-3/G-4 fields.
 // Patch shape-control options of `fit` reject bad values with exit 2.
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // An independent, deliberately naive implementation of the papers' formulas, used only as a
 // test oracle. It shares no code with model/: H_n by the literal recursion of eq. 2-3 (2^n
-// calls), S_abs/S_max by eq. 4-6 with the README's corrections, primitives by their textbook
+// calls), S_abs/S_max by eq. 4-6 with docs/maths.md's corrections, primitives by their textbook
 // closed forms written out longhand in double.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Guo §3 shape control in the patch fitter (NOTES G-3): the constraints hold exactly after a fit
+// Guo §3 shape control in the patch fitter (docs/maths.md G-3): the constraints hold exactly after a fit
 // (f(x_i) = 0, grad f(x_i) / |grad f| = n, f = 0 along a constrained edge), by evaluating the
 // fitted patch; the fit stays close to data that satisfy them.
 #include <gtest/gtest.h>

@@ -72,7 +72,7 @@ TEST(ColemanFeaturesRecovery, NotesFormOnATriangleSkeletonWithinOnePercent) {
   const std::vector<double>& p = r.model.parameters();  // triangle 9, R_C, f 3, W, D, R, flare
   const double rc = p[9], w = p[13], d = p[14], rr = p[15];
   std::printf(
-      "  coleman NOTES form: R_C %.5f (0.4), W %.5f (0.3), D %.5f (0.25), R %.5f (0.2), rms "
+      "  coleman skeleton form: R_C %.5f (0.4), W %.5f (0.3), D %.5f (0.25), R %.5f (0.2), rms "
       "%.3g\n",
       rc, w, d, rr, r.rms);
   EXPECT_NEAR(rc, 0.4, 0.004);

@@ -1,4 +1,4 @@
-// fit --init on a "smoothing": "convex" blend (NOTES LP-4 b): the tree fitter recovers the two
+// fit --init on a "smoothing": "convex" blend (docs/maths.md LP-4 b): the tree fitter recovers the two
 // planes and the width w = delta of a rounded crease sampled from the truth; epsilon has no
 // block (its slot is unused).
 #include <gtest/gtest.h>

@@ -181,7 +181,7 @@ TEST(TreeFitter, FitsTheRealFin90CreaseScan) {
       angle * 180 / M_PI, r.rms, r.rms / size, r.inliers, cloud.size(), p[8], p[9]);
   // The file is described as two planes at 90 degrees, but its PCA normals turn continuously
   // over most of the scan: two planes and one blend leave an RMS of ~2.4% of the extent and
-  // the planes come out near 73 degrees (an open question, see the README). What is checked:
+  // the planes come out near 73 degrees (an open question). What is checked:
   // the fit never does worse than its start, keeps > 90% of the points, and 0 < eps <= delta.
   double ss0 = 0;
   for (const auto& x : cloud.points) {

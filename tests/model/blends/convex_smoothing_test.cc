@@ -1,4 +1,4 @@
-// The convexity-preserving smooth abs / max (model/blends/convex_smooth_ops.h, NOTES LP-4 b) and the
+// The convexity-preserving smooth abs / max (model/blends/convex_smooth_ops.h, docs/maths.md LP-4 b) and the
 // "smoothing": "convex" blend option. Expected values: closed forms (S^c(0) = 13w/48 for n = 3,
 // w/2 for n = 1), Simpson quadrature of H_n (model/blends/unit_step.h, not the integrated pieces),
 // finite differences, |t| outside the band.

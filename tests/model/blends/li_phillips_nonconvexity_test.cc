@@ -1,7 +1,7 @@
-// Regression record (docs/maths.md §0.3, LP-4 a): Li & Phillips' smooth max S_max is neither
+// Regression record (docs/maths.md LP-4 a): Li & Phillips' smooth max S_max is neither
 // convex nor monotone, so a "li-phillips" smooth intersection of convex solids is NOT convex.
 // No code may rely on it; the convexity-preserving blend is "smoothing": "convex"
-// (model/blends/convex_smooth_ops.h). Expected values are the NOTES' (independent numpy scripts).
+// (model/blends/convex_smooth_ops.h). Expected values are docs/maths.md's (independent NumPy scripts).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,17 +37,17 @@ double ZeroAt(const Model& m, double x) {
 TEST(LiPhillipsSmoothMax, WitnessMidpointOfTwoZeroSetPointsLiesOutside) {
   const Model m = WitnessTree();
   const double y1 = ZeroAt(m, -1.890), y2 = ZeroAt(m, -0.990);
-  EXPECT_NEAR(y1, -0.00015, 2e-5);   // NOTES §0.3: (-1.890, -0.00015)
+  EXPECT_NEAR(y1, -0.00015, 2e-5);   // docs/maths.md LP-4 a: (-1.890, -0.00015)
   EXPECT_NEAR(y2, -0.000013, 5e-6);  //             (-0.990, -0.000013)
   const Eigen::Vector3d mid(0.5 * (-1.890 - 0.990), 0.5 * (y1 + y2), 0.0);
   const double f_mid = m.Value(mid);
-  EXPECT_GT(f_mid, 4.0e-3);  // NOTES: +4.7e-3, outside: the solid {f <= 0} is not convex
+  EXPECT_GT(f_mid, 4.0e-3);  // docs/maths.md: +4.7e-3, outside: the solid {f <= 0} is not convex
   EXPECT_LT(f_mid, 5.5e-3);
 }
 
 TEST(LiPhillipsSmoothMax, SmoothAbsIsNeitherConvexNorOneLipschitz) {
   // Order 3, eps = delta = 1: S_abs'' dips to -0.2115 just outside |t| = delta, |S_abs'| reaches
-  // 1.0387 (NOTES §0.3). Central differences on a dense grid.
+  // 1.0387 (docs/maths.md LP-4 a). Central differences on a dense grid.
   const double h = 1e-4;
   double min_second = 0.0, max_slope = 0.0;
   for (int i = 0; i <= 40000; ++i) {

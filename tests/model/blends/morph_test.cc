@@ -1,5 +1,5 @@
 // Morph node (docs/maths.md TB-4): t = 1 and t = 0 reproduce the children bit for bit, values in
-// between are the convex combination, the JSON form of the notes loads and t outside [0, 1] is
+// between are the convex combination, the JSON form of docs/maths.md TB-4 loads and t outside [0, 1] is
 // refused with its path.
 #include <gtest/gtest.h>
 

@@ -139,7 +139,7 @@ Corners RegularTetrahedronVertexDown(double circumradius, const Vec& centre) {
 }
 
 TEST(FinslerCertificate, CertifiesOneSheetOfATwoSheetHyperboloid) {
-  // f = x^2 + y^2 - z^2 + 1 (solid z >= sqrt(1 + x^2 + y^2) inside), NOTES G-4 a.
+  // f = x^2 + y^2 - z^2 + 1 (solid z >= sqrt(1 + x^2 + y^2) inside), docs/maths.md G-4 a.
   // Vertex down, so the tetrahedron (z in [0.9, 1.43]) meets the sheet z = sqrt(1 + x^2 + y^2).
   const Corners c = RegularTetrahedronVertexDown(0.4, Vec(0, 0, 1.3));
   CartesianQuadric q;
@@ -159,7 +159,7 @@ TEST(FinslerCertificate, CertifiesOneSheetOfATwoSheetHyperboloid) {
 
 TEST(FinslerCertificate, NeverContradictsSamplingAndKeepsEveryPlainCertificate) {
   std::mt19937 rng(14);
-  const Corners c = RegularTetrahedron(std::sqrt(3.0), Vec::Zero());  // the README's
+  const Corners c = RegularTetrahedron(std::sqrt(3.0), Vec::Zero());  // docs/convexity.md's
   int plain = 0, finsler = 0, checked = 0;
   for (int i = 0; i < 10000; ++i) {
     const int k = 2 + i % 2;

@@ -1,4 +1,4 @@
-// Tree convexity certificate (model/certificates/tree_certificate.h, NOTES LP-4 c) against the independent
+// Tree convexity certificate (model/certificates/tree_certificate.h, docs/maths.md LP-4 c) against the independent
 // sampling tangent-plane test (model/certificates/tangent_plane_test.h) on whole models over a box.
 #include "model/certificates/tree_certificate.h"
 

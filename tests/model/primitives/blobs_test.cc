@@ -1,4 +1,4 @@
-// Blobs (docs/maths.md TB-2): the closed forms of the notes, derived from the kernels by hand.
+// Blobs (docs/maths.md TB-2): the closed forms of docs/maths.md TB-2, derived from the kernels by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Coleman's features in docs/maths.md CO-2's own JSON form: "features" on a skeleton_offset node in
 // field mode (i = s(d; 0, R_C), R_C = the node's "radius", iso 1/2). The model is loaded from a
-// JSON text written by hand from the notes, and checked against the notes' closed form: core =
+// JSON text written by hand from docs/maths.md CO-2, and checked against its closed form: core =
 // the plane z = 0 (here a large triangle skeleton: d = z above it, as for the half-space), a
 // point feature above the origin; the zero set is z = R_C + D + W + R/2 for rho <= W and
 // z = R_C/2 for rho >= W + R, whatever the flare, found by bisection along z to 1e-12.

@@ -1,5 +1,5 @@
 // Paraboloid (docs/maths.md LP-2) and the plane's point+normal input form: closed forms derived
-// here, kappa = 0 against the plane, the sign of the curvature, the JSON forms of the notes.
+// here, kappa = 0 against the plane, the sign of the curvature, the JSON forms of docs/maths.md LP-2.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -1,0 +1,85 @@
+# Type stubs of the `implicitfit` extension module, as python/*.cc bind it (docs/python.md).
+# tests/python/test_stubs.py checks that every public name and every signature here matches the
+# built module.
+from os import PathLike
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+_Array = npt.NDArray[np.float64]
+_Points = npt.ArrayLike  # an (N, 3) array (float64 is used without conversion)
+_Report = Dict[str, Any]  # the JSON report of the command line, as Python objects
+_Path = Union[str, "PathLike[str]"]
+
+class Model:
+    """An implicit surface model: f(x) < 0 inside, f > 0 outside, grad f outward."""
+
+    @staticmethod
+    def from_json(text: str) -> Model: ...
+    @staticmethod
+    def load(path: _Path) -> Model: ...
+    def to_json(self, indent: int = 2) -> str: ...
+    def save(self, path: _Path) -> None: ...
+    def evaluate(self, points: _Points) -> _Array:
+        """f at each row: an (N,) array."""
+    def gradient(self, points: _Points) -> _Array:
+        """grad f at each row: an (N, 3) array."""
+    @property
+    def parameters(self) -> Dict[str, Any]:
+        """The parameters by field: floats, or arrays for vectors."""
+    @property
+    def kind(self) -> str:
+        """The root node's type: "sphere", "union", "bernstein_patch", ..."""
+
+def fit(
+    points: _Points,
+    normals: Optional[_Points] = None,
+    kind: str = "sphere",
+    seed: int = 0,
+    threshold: Optional[float] = None,
+    fix: Optional[Mapping[str, Union[float, Sequence[float]]]] = None,
+    estimator: str = "robust",
+) -> Tuple[Optional[Model], _Report]:
+    """One primitive, as `implicitfit fit CLOUD --model KIND`; Model is None when it fails."""
+
+def fit_tree(
+    points: _Points, normals: Optional[_Points], init: Model
+) -> Tuple[Optional[Model], _Report]:
+    """Every free parameter of a model tree, as `implicitfit fit CLOUD --init MODEL.json`."""
+
+def fit_patch(
+    points: _Points,
+    normals: Optional[_Points],
+    degree: int = 2,
+    convex: bool = False,
+    tetrahedron: Optional[_Points] = None,
+) -> Tuple[Optional[Model], _Report]:
+    """A Bernstein patch of degree 2..4, as `implicitfit fit CLOUD --model quadric-patch`."""
+
+def read_cloud(path: _Path, estimate: bool = False) -> Tuple[_Array, Optional[_Array]]:
+    """(points, normals or None) of a .xyz/.pwn/.txt/.ply/.pcd file."""
+
+def estimate_normals(
+    points: _Points,
+    viewpoint: Optional[Sequence[float]] = None,
+    min_k: int = 8,
+    max_k: int = 30,
+) -> _Array:
+    """Oriented PCA normals: an (N, 3) array."""
+
+def sample(
+    model: Model,
+    count: int,
+    noise: float = 0.0,
+    outliers: float = 0.0,
+    seed: int = 0,
+    view: Optional[Sequence[float]] = None,
+    view_angle: float = 180.0,
+) -> Tuple[_Array, _Array]:
+    """Oriented points on the zero set, as `implicitfit sample`: (points, normals)."""
+
+def check(model: Model) -> _Report:
+    """Convexity certificates, as one file's entry of `implicitfit check --json`."""
