@@ -1,9 +1,12 @@
 // implicitfit detect CLOUD --out SCENE.json [--labels LABELS.txt] [--ply SEGMENTED.ply]
 //                    [--report R.json] [--kinds plane,sphere,cylinder,cone,torus]
 //                    [--threshold t] [--min-points m] [--seed s] [--threads n]
-// Every primitive of a multi-primitive cloud, with its points (fit/detect/primitive_detector.h).
-// Exit 0 with at least one primitive, 1 when none is found (no scene written), 2 for invalid
-// usage or input.
+//                    [--score | --truth TRUTH.txt] [--truth-kinds LIST] [--truth-none V]
+//                    [--quiet]
+// Every primitive of a multi-primitive cloud, with its points (fit/detect/primitive_detector.h);
+// --score / --truth: the result against ground-truth labels (apps/detect_job.h). Progress on
+// stderr unless --quiet. Exit 0 with at least one primitive, 1 when none is found (no scene
+// written), 2 for invalid usage or input.
 #include <cstdio>
 #include <iostream>
 
@@ -11,6 +14,7 @@
 #include "apps/detect_job.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
+#include "datasets/io/io_error.h"
 
 namespace implicitfit {
 namespace {
@@ -20,6 +24,8 @@ struct DetectArgs {
   double threshold = 0.0;
   int min_points = 0, threads = 0;
   unsigned seed = 1;
+  bool score = false, quiet = false;
+  TruthRequest truth;
 };
 
 }  // namespace
@@ -34,10 +40,12 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--out", a->out, "Output scene file (JSON, docs/scene-file.md)")->required();
   cmd->add_option("--labels", a->labels,
                   "Per-point labels: primitive index, -1 unassigned, one a line");
-  cmd->add_option("--ply", a->ply, "Segmented cloud (PLY with normals, label and residual)");
+  cmd->add_option("--ply", a->ply,
+                  "Segmented cloud: PLY with double coordinates, normals, a colour per primitive, "
+                  "label (and scalar_label) and scalar_residual");
   cmd->add_option("--view", a->view, "A page of the segmentation (docs/view.md)");
   cmd->add_option("--report", a->report,
-                  "JSON report (scales estimated from the cloud, counts, time)");
+                  "JSON report (scales estimated from the cloud, counts, time, score)");
   cmd->add_option("--kinds", a->kinds, "Kinds to detect, comma separated (default: all five)");
   cmd->add_option("--threshold", a->threshold,
                   "Distance band (default: from the cloud's noise and spacing)")
@@ -47,6 +55,18 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "Random seed (the result depends on it only, not on threads)");
   cmd->add_option("--threads", a->threads, "Threads (default: all cores; at most 256 are used)")
       ->check(CLI::NonNegativeNumber);
+  auto* score = cmd->add_flag("--score", a->score,
+                              "Score the detection against the cloud's own labels (.xyzl column, "
+                              "PLY/PCD label, scalar_label or segment_index)");
+  cmd->add_option("--truth", a->truth.file,
+                  "Score against these labels (one a line, negative: no primitive; a comment "
+                  "'# kinds: plane,...' gives their kinds)")
+      ->excludes(score);
+  cmd->add_option("--truth-kinds", a->truth.kinds,
+                  "Kinds of the truth primitives, in increasing label order (plane,cylinder,...)");
+  cmd->add_option("--truth-none", a->truth.none,
+                  "A label value that means 'on no primitive' (besides negative values)");
+  cmd->add_flag("--quiet", a->quiet, "No progress on stderr");
   return [a]() {
     DetectionOptions options;
     options.kinds = DetectionKindsFromList(a->kinds);
@@ -54,7 +74,23 @@ CommandAction AddDetectCommand(CLI::App& app) {
     options.min_points = a->min_points;
     options.seed = a->seed;
     options.num_threads = a->threads;
-    const CloudDetection d = DetectCloudFile(a->cloud, options);
+    if (!a->quiet)
+      options.progress = [](const std::string& message) {
+        std::cerr << "implicitfit detect: " << message << std::endl;
+      };
+    const bool scoring = a->score || !a->truth.file.empty();
+    if (!scoring && (!a->truth.kinds.empty() || a->truth.none != -1))
+      throw InputError("--truth-kinds and --truth-none apply with --score or --truth");
+    if (!a->truth.file.empty()) ReadTruthFile(a->truth.file);  // a bad file fails before the work
+    CloudDetection d = DetectCloudFile(a->cloud, options);
+    // The truth is read (and refused) before anything is written.
+    if (scoring && !d.degenerate) {
+      const TruthLabels truth = LoadTruth(d, a->truth);
+      const DetectionScore s = ScoreDetection(d, truth);
+      d.report["score"] = s.ToJson();
+      d.report["score"]["truth"] = truth.source;
+      std::printf("score against %s: %s\n", truth.source.c_str(), s.Line().c_str());
+    }
     if (!a->report.empty()) WriteFileAtomically(a->report, d.report.dump(2) + "\n");
     if (d.scene.primitives.empty()) {
       std::cerr << "implicitfit detect: " << a->cloud << ": no primitive found"

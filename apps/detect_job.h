@@ -1,31 +1,40 @@
-// The detection of one cloud file, shared by the `detect` command (and `batch --model scene`):
-// read the cloud with oriented normals (datasets/normals/oriented_cloud.h: estimated and oriented when
-// the file has none), its k-nearest-neighbour graph and spacing (datasets/normals/neighbourhoods.h),
-// detect every primitive (fit/detect/primitive_detector.h), and build the scene (datasets/io/scene_file.h)
-// and the JSON report:
+// The detection of one cloud file, shared by the `detect` command (and `batch --model scene`,
+// `reconstruct`): read the cloud with oriented normals (datasets/normals/oriented_cloud.h:
+// estimated and oriented when the file has none) and the neighbourhoods the normals were
+// checked or estimated with (datasets/normals/neighbourhoods.h: one k-nearest-neighbour search
+// for both), detect every primitive (fit/detect/primitive_detector.h), and build the scene
+// (datasets/io/scene_file.h) and the JSON report:
 //   {"cloud", "points", "normals", "primitives", "unassigned", "spacing", "noise", "threshold",
 //    "normal_angle_deg", "min_points", "seeds", "candidates_accepted", "merges", "seconds",
 //    "kinds": {kind: count}}
+// Scoring (`detect --score` / `--truth`): the detection against ground-truth labels with the
+// benchmark's definitions (fit/detect/segmentation_metrics.h): recall, precision, mean IoU,
+// kind accuracy and coverage over the truth primitives holding >= 1% of the points.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "datasets/clouds/cloud_file_info.h"
 #include "datasets/clouds/point_cloud.h"
 #include "datasets/io/scene_file.h"
+#include "datasets/io/truth_labels.h"
 #include "fit/detect/primitive_detector.h"
+#include "fit/detect/segmentation_metrics.h"
 
 namespace implicitfit {
 
 struct CloudDetection {
   PointCloud cloud;  // as read, with the normals the detection used
+  CloudFileInfo info;
   DetectionResult result;
   Scene scene;
   nlohmann::json report;
   bool degenerate = false;  // too few points for normals: nothing could be detected
 };
 
-// Throws InputError (naming the file) when the cloud cannot be read.
+// Throws InputError (naming the file) when the cloud cannot be read. options.progress, when
+// set, is also told about the reading and the neighbourhood search.
 CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options);
 // The same on a cloud already read (oriented normals, or none: degenerate); `path` names it in
 // the scene and report, `normals_action` says where its normals came from.
@@ -36,8 +45,32 @@ CloudDetection DetectCloud(PointCloud cloud, const std::string& path,
 std::vector<NodeType> DetectionKindsFromList(const std::string& list);
 
 // Writes the scene, and the labels and segmented PLY when their paths are not empty (each
-// atomically).
+// atomically). The PLY: double x y z, the normals, a colour per primitive (red green blue;
+// grey for unassigned points), the label as "label" (PCL's PointXYZL) and "scalar_label", and
+// f of the point's primitive as "scalar_residual" (CloudCompare loads scalar_* properties).
 void WriteDetection(const CloudDetection& detection, const std::string& scene_path,
                     const std::string& labels_path, const std::string& ply_path);
+
+// Where the truth comes from: a truth file (datasets/io/truth_labels.h), else the cloud's own
+// labels (.xyzl column, PLY/PCD "label" / "scalar_label" / "segment_index"); kinds: the
+// file's kinds line or `kinds` ("plane,cylinder,...", one per truth primitive in increasing
+// label order); `none`: one more label value meaning "on no primitive".
+struct TruthRequest {
+  std::string file;  // empty: the cloud's labels
+  std::string kinds;
+  long none = -1;
+};
+// InputError naming the file when the labels are missing or do not match the cloud.
+TruthLabels LoadTruth(const CloudDetection& detection, const TruthRequest& request);
+
+struct DetectionScore {
+  SegmentationMetrics metrics;
+  bool kinds_known = false;
+  int truth_primitives = 0;  // all of them, counted or not
+  nlohmann::json ToJson() const;
+  // "recall 5/6 (83.3%)  precision 5/7 (71.4%)  mean IoU 0.912  kind accuracy 1.000 ..."
+  std::string Line() const;
+};
+DetectionScore ScoreDetection(const CloudDetection& detection, const TruthLabels& truth);
 
 }  // namespace implicitfit

@@ -1,8 +1,11 @@
 // implicitfit fit CLOUD --model KIND --out MODEL.json [--report R.json] [--seed s]
-//                 [--fix FIELD=V[,V,V] ...] [--threshold t]
-// Fits one primitive (fit/primitive/primitive_fitter.h); prints the model and its residual figures.
-// Exit 0 on success; 1 when the fit fails (too few inliers, no convergence) with the reason,
-// and no model file; 2 for invalid usage or input.
+//                 [--fix FIELD=V[,V,V] ...] [--threshold t | --band b]
+// Fits one primitive (fit/primitive/primitive_fitter.h) that must be real (fit/detect/
+// checked_fit.h: the detector's candidate checks); prints the model and its residual figures.
+// --threshold: a fixed inlier distance; --band: the adaptive band's start (default: from the
+// cloud's noise and spacing). Exit 0 on success; 1 when the fit fails (too few inliers, no
+// convergence, no real primitive of the kind) with the reason, and no model file; 2 for
+// invalid usage or input.
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -24,7 +27,7 @@ namespace {
 struct FitArgs {
   std::string cloud, kind, out, report, init;
   unsigned seed = 1;
-  double threshold = 0.0;
+  double threshold = 0.0, band = 0.0;
   std::vector<std::string> fixes;
   bool convex = false;
   int degree = 0;
@@ -59,9 +62,16 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
   cmd->add_option("--report", a->report, "Write a JSON report of the fit");
   cmd->add_option("--seed", a->seed, "Random seed (the fit is deterministic for a seed)");
-  cmd->add_option("--threshold", a->threshold,
-                  "Initial inlier band (default: 1% of the bounding-box diagonal)")
-      ->check(CLI::PositiveNumber);
+  auto* threshold_opt =
+      cmd->add_option("--threshold", a->threshold,
+                      "Fixed inlier distance: |f| < t in every round (as Open3D's and PCL's "
+                      "distance threshold)")
+          ->check(CLI::PositiveNumber);
+  cmd->add_option("--band", a->band,
+                  "Adaptive inlier band: start at b, then 3 x the estimated noise (default "
+                  "start: 3 x the cloud's noise, at least 0.1 x its spacing)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(threshold_opt);
   cmd->add_option("--fix", a->fixes,
                   "Keep a parameter constant, e.g. --fix radius=2 --fix axis=0,0,1");
   cmd->add_option("--estimator", a->estimator,
@@ -135,7 +145,8 @@ CommandAction AddFitCommand(CLI::App& app) {
     if (IsShapeKind(a->kind)) return RunShapeFit(request, a->seed);
     if (a->convex) throw InputError("--convex applies to quadric-patch and cubic-patch");
     if (a->kind.empty()) throw InputError("--model KIND or --init MODEL.json is required");
-    PrimitiveFitOptions options = FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes);
+    PrimitiveFitOptions options =
+        FitOptionsFromArguments(a->kind, a->seed, a->threshold, a->fixes, a->band);
     SetEstimatorFromArgument(a->estimator, &options);
     const CloudFit fit = FitCloudFile(a->cloud, options);
     const PrimitiveFitResult& result = fit.result;

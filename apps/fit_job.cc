@@ -5,7 +5,9 @@
 #include "apps/option_validators.h"
 #include "datasets/io/io_error.h"
 #include "datasets/normals/normal_trust.h"
+#include "datasets/normals/neighbourhoods.h"
 #include "fit/common/fit_report.h"
+#include "fit/detect/checked_fit.h"
 
 namespace implicitfit {
 namespace {
@@ -27,22 +29,30 @@ std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& te
 
 CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options) {
   std::string normals;
-  const PointCloud cloud = ReadCloudForPrimitiveFit(path, &normals);
+  Neighbourhoods nb;
+  const PointCloud cloud = ReadCloudForPrimitiveFit(path, &normals, &nb);
   CloudFit fit;
   fit.points = cloud.size();
-  fit.result = FitPrimitive(cloud.points, cloud.normals, options);
+  if (cloud.has_normals() && nb.indices.size() != cloud.size() && cloud.size() >= 2)
+    nb = FindNeighbourhoods(cloud.points);
+  const CheckedFit checked =
+      FitCheckedPrimitive(cloud.points, cloud.normals, nb.indices, nb.spacing, options);
+  fit.result = checked.result;
   fit.report = fit.result.ToJson(normals);
+  fit.report["check"] = checked.ToJson();
   return fit;
 }
 
 PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed,
                                             double threshold,
-                                            const std::vector<std::string>& fixes) {
+                                            const std::vector<std::string>& fixes,
+                                            double start_band) {
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))
     throw InputError("--model " + kind + ": unknown kind (" + FittableKindNames() + ")");
   options.seed = seed;
   options.threshold = threshold;
+  options.start_band = start_band;
   for (const std::string& f : fixes) options.fixed.insert(ParseFixOption(f));
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);

@@ -1,6 +1,8 @@
 // The fit of one cloud file, shared by the `fit` and `batch` commands: read the cloud
-// (datasets/clouds/cloud_file.h), fit one primitive (fit/primitive/primitive_fitter.h) and build the JSON report
-// that `fit --report` writes:
+// (datasets/clouds/cloud_file.h), fit one primitive and check that it is real
+// (fit/detect/checked_fit.h: on a cloud of many surfaces a real primitive of the kind or a
+// failure, never a confident wrong one) and build the JSON report that `fit --report` writes
+// (its "check" field: fit/detect/checked_fit.h):
 //   {"success", "message", "points", "inliers", "rms_distance", "max_distance", "sigma",
 //    "mean_normal_angle_deg", "iterations", "rounds", "seconds", "normals",
 //    "parameters": {field: value}, "standard_deviations": {field: value},
@@ -28,11 +30,13 @@ struct CloudFit {
 // Throws InputError (naming the file) when the cloud cannot be read.
 CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options);
 
-// The fit options of the command-line arguments --model KIND, --seed, --threshold (<= 0: the
-// default) and --fix FIELD=V[,V...] (e.g. "radius=2", "axis=0,0,1"); InputError when invalid.
+// The fit options of the command-line arguments --model KIND, --seed, --threshold (a fixed
+// inlier distance; <= 0: none), --fix FIELD=V[,V...] (e.g. "radius=2", "axis=0,0,1") and --band
+// (the adaptive band's start; <= 0: from the cloud); InputError when invalid.
 PrimitiveFitOptions FitOptionsFromArguments(const std::string& kind, unsigned seed,
                                             double threshold,
-                                            const std::vector<std::string>& fixes);
+                                            const std::vector<std::string>& fixes,
+                                            double start_band = 0.0);
 
 // --estimator robust|least-squares|minimum-zone into options; InputError for another name.
 void SetEstimatorFromArgument(const std::string& name, PrimitiveFitOptions* options);

@@ -31,10 +31,10 @@ struct FileOptions {
 };
 const std::map<std::string, FileOptions> kFileOptions = {
     {"fit", {{"--out", "--report", "--view", "--ply"}, {"--init"}}},
-    {"detect", {{"--out", "--labels", "--ply", "--report", "--view"}, {}}},
+    {"detect", {{"--out", "--labels", "--ply", "--report", "--view"}, {"--truth"}}},
     {"reconstruct", {{"--out", "--mesh", "--report", "--view"}, {"--scene"}}},
     {"mesh", {{"--out"}, {}}},
-    {"sample", {{"--out"}, {}}},
+    {"sample", {{"--out", "--truth"}, {}}},
     {"design", {{"--out"}, {}}},
     {"view", {{"--out", "--png"}, {"--labels"}}},
     {"eval", {{}, {}}},

@@ -1,11 +1,17 @@
 // implicitfit sample MODEL.json --count N [--noise s] [--outliers f] [--seed s]
 //                    [--view x,y,z --view-angle deg] --out CLOUD.xyz|CLOUD.ply
+//                    [--truth LABELS.txt]
+// --truth: the truth labels of the points (datasets/io/truth_labels.h): the index of the leaf
+// primitive each point was drawn on (leaves in the model file's node order), -1 for outliers
+// and for points on no leaf (a blend's fillet), with a kinds line when every leaf drawn on is a
+// plane, sphere, cylinder, cone or torus; `detect --truth` scores against it.
 // Oriented points on the model's zero set with known truth (datasets/generators/model_sampler.h).
 #include <iostream>
 
 #include "apps/command.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/read_limits.h"
+#include "datasets/io/truth_labels.h"
 #include "datasets/io/model_file.h"
 #include "datasets/generators/model_sampler.h"
 #include "datasets/clouds/ply_writer.h"
@@ -19,6 +25,7 @@ CommandAction AddSampleCommand(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   auto options = std::make_shared<SampleOptions>();
   auto view = std::make_shared<std::vector<double>>();
+  auto truth = std::make_shared<std::string>();
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
   cmd->add_option("--count", options->count, "Number of points (inliers + outliers)")
       ->required()
@@ -40,7 +47,9 @@ CommandAction AddSampleCommand(CLI::App& app) {
                   "Output cloud (.xyz/.pwn/.txt: x y z nx ny nz; .ply: binary with normals; - for "
                   "stdout, as .xyz)")
       ->required();
-  return [model_path, out, options, view]() {
+  cmd->add_option("--truth", *truth,
+                  "Also write the truth labels: leaf primitive of each point, -1 for outliers");
+  return [model_path, out, options, view, truth]() {
     const size_t dot = out->find_last_of('.');
     const std::string ext = *out == "-" ? "xyz" : dot == std::string::npos ? "" : out->substr(dot + 1);
     const bool ply = ext == "ply";
@@ -61,10 +70,21 @@ CommandAction AddSampleCommand(CLI::App& app) {
       std::cerr << "implicitfit sample: " << *model_path << ": " << e.what() << "\n";
       return 1;
     }
+    std::vector<NodeType> kinds;
+    for (int node : sampled.leaf_nodes) kinds.push_back(model.nodes()[node].type);
+    for (int l : sampled.primitive) {
+      const NodeType k = l >= 0 ? kinds[l] : NodeType::kPlane;
+      if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder ||
+            k == NodeType::kCone || k == NodeType::kTorus)) {
+        kinds.clear();  // a kind the detector does not know: labels only
+        break;
+      }
+    }
     if (ply)
       WritePlyFile(sampled.cloud, *out);
     else
       WriteXyzFile(sampled.cloud, *out);
+    if (!truth->empty()) WriteTruthFile(sampled.primitive, kinds, *truth);
     return 0;
   };
 }

@@ -3,7 +3,8 @@
 //   estimated as a user's run would (PCA + MST orientation) and with normals from the ground-
 //   truth surfaces (gradients of the implicit equations; tori: grad of the torus fitted to their
 //   labelled points), CGAL's labelled icosahedron, and generated scenes
-//   (datasets/generators/scene_generator.h: six primitives, noise 0.005, 10% outliers).
+//   (datasets/generators/scene_generator.h: six primitives, noise 0.005, 10% outliers), CGAL's ten
+//   spheres and PCL's sphere cap (labels from reference spheres, normals estimated).
 // Per cloud and method: recall, precision, mean IoU, kind accuracy, coverage
 // (fit/detect/segmentation_metrics.h, primitives with >= 1% of the points), parameter error (RMS of the
 // detected f over each recovered ground-truth primitive's points, over the bbox diagonal;
@@ -13,6 +14,11 @@
 // min_points 0.5% of the points, each grid run stopped after 10 s (CGAL's defaults run to the end).
 // --scale: instead, one generated scene of about 10^6 points (ground 500 000, five objects of
 // 80 000, 10% outliers), implicitfit only: neighbourhoods + detection time.
+// --scale-scene DIR: writes that scene as DIR/scene_1e6.ply (double x y z, normals) and its
+// truth DIR/scene_1e6.truth (datasets/io/truth_labels.h) for bench/detect_scale.sh, which runs
+// `implicitfit detect` and `detect_comparison --cgal` on it under /usr/bin/time -v.
+// --cgal CLOUD TRUTH: CGAL's Efficient RANSAC (defaults) on a cloud file with normals, scored
+// against a truth file: one table row (its peak memory is the process's).
 // Usage: detect_comparison [--quick] [--no-cgal] [--scale] > table.md
 #include <Eigen/Dense>
 #include <chrono>
@@ -30,6 +36,8 @@
 #include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/normal_estimation.h"
 #include "datasets/generators/scene_generator.h"
+#include "datasets/clouds/ply_writer.h"
+#include "datasets/io/truth_labels.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/detect/segmentation_metrics.h"
@@ -135,17 +143,39 @@ void Print(const std::string& cloud, size_t points, const std::string& method, c
 
 }  // namespace
 
+GeneratedScene ScaleScene() {
+  GeneratedSceneOptions o;
+  o.ground_points = 500000;
+  o.object_points = 80000;
+  return GenerateScene(o);
+}
+
 int main(int argc, char** argv) {
   bool quick = false, cgal = true;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--scale")) {
-      GeneratedSceneOptions o;
-      o.ground_points = 500000;
-      o.object_points = 80000;
-      const GeneratedScene g = GenerateScene(o);
+      const GeneratedScene g = ScaleScene();
       Case c{"generated scene, 10^6 points", g.cloud, g.labels, g.kinds};
       const Row r = RunImplicitfit(c);
       Print(c.name, c.cloud.size(), "implicitfit", r);
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--scale-scene") && i + 1 < argc) {
+      const std::string dir = argv[i + 1];
+      const GeneratedScene g = ScaleScene();
+      WritePlyFile(g.cloud, dir + "/scene_1e6.ply");
+      WriteTruthFile(g.labels, g.kinds, dir + "/scene_1e6.truth");
+      std::printf("%s/scene_1e6.ply: %zu points\n", dir.c_str(), g.cloud.size());
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--cgal") && i + 2 < argc) {
+      Case c;
+      c.name = argv[i + 1];
+      c.cloud = ReadCloudFile(argv[i + 1]);
+      const TruthLabels t = ReadTruthFile(argv[i + 2], static_cast<long>(c.cloud.size()));
+      c.labels = t.labels;
+      c.kinds = t.kinds;
+      Print(c.name, c.cloud.size(), "CGAL defaults", RunCgal(c, {}));
       return 0;
     }
     if (!std::strcmp(argv[i], "--quick")) quick = true;
@@ -185,6 +215,41 @@ int main(int argc, char** argv) {
       c.kinds.assign(20, NodeType::kPlane);
       cases.push_back(c);
     }
+  }
+  // CGAL's ten spheres and PCL's sphere cap: labels from the reference spheres fitted to them
+  // (cgal/reference_spheres.txt: algebraic fits, RMS <= 3e-7; a point belongs to the sphere it
+  // lies on within 1e-4 of the cloud's diagonal, -1 otherwise). Normals estimated.
+  for (const auto& [file, name] :
+       {std::pair<std::string, std::string>{"cgal/cgal_spheres_10.ply", "CGAL 10 spheres"},
+        {"pcl/pcl_cturtle_sphere_cap_r2.ply", "PCL sphere cap (cturtle)"}}) {
+    const std::string path = data + "/" + file;
+    std::ifstream ref(data + "/cgal/reference_spheres.txt");
+    if (!std::ifstream(path) || !ref) continue;
+    const std::string stem = file.substr(file.find('/') + 1, file.rfind('.') - file.find('/') - 1);
+    std::vector<Eigen::Vector4d> spheres;
+    for (std::string line; std::getline(ref, line);) {
+      char f[256];
+      double cx, cy, cz, r;
+      if (line.empty() || line[0] == '#' ||
+          std::sscanf(line.c_str(), "%255s %lf %lf %lf %lf", f, &cx, &cy, &cz, &r) != 5)
+        continue;
+      const std::string fs = f;
+      if (fs.find(stem) != std::string::npos) spheres.emplace_back(cx, cy, cz, r);
+    }
+    if (spheres.empty()) continue;
+    Case c;
+    c.name = name;
+    c.cloud = ReadCloudFile(path);
+    c.cloud.normals.clear();
+    EnsureOrientedNormals(&c.cloud);
+    const double tol = 1e-4 * Diagonal(c.cloud);
+    c.labels.assign(c.cloud.size(), -1);
+    for (size_t i = 0; i < c.cloud.size(); ++i)
+      for (size_t k = 0; k < spheres.size(); ++k)
+        if (std::abs((c.cloud.points[i] - spheres[k].head<3>()).norm() - spheres[k][3]) < tol)
+          c.labels[i] = static_cast<int>(k);
+    c.kinds.assign(spheres.size(), NodeType::kSphere);
+    cases.push_back(c);
   }
   for (unsigned seed = 1; seed <= (quick ? 1u : 3u); ++seed) {
     GeneratedSceneOptions o;

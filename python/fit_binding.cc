@@ -17,7 +17,9 @@
 #include <string>
 
 #include "datasets/normals/normal_estimation.h"
+#include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/normal_trust.h"
+#include "fit/detect/checked_fit.h"
 #include "fit/common/fit_report.h"
 #include "fit/bernstein/patch_fitter.h"
 #include "fit/primitive/primitive_fitter.h"
@@ -107,7 +109,7 @@ void EstimateTrustedNormalsIfMissing(FitInput* in) {
 
 py::tuple Fit(const py::handle& points, const py::handle& normals, const std::string& kind,
               long long seed, std::optional<double> threshold, std::optional<py::dict> fix,
-              const std::string& estimator) {
+              const std::string& estimator, std::optional<double> band) {
   if ((kind == "quadric-patch" || kind == "cubic-patch") && estimator != "robust")
     throw py::value_error("estimator " + estimator +
                           ": applies to plane, sphere, cylinder, cone and torus fits");
@@ -122,6 +124,12 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
     if (!(*threshold > 0.0) || !std::isfinite(*threshold))
       throw py::value_error("threshold: must be a positive number");
     options.threshold = *threshold;
+  }
+  if (band) {
+    if (!(*band > 0.0) || !std::isfinite(*band))
+      throw py::value_error("band: must be a positive number");
+    if (threshold) throw py::value_error("threshold and band exclude each other");
+    options.start_band = *band;
   }
   if (fix) {
     for (const auto& [field, value] : *fix) {
@@ -149,15 +157,22 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
       ReadFitInput(points, normals,
                    normals.is_none() ? static_cast<size_t>(FreeParameterCount(options.kind)) + 1
                                      : static_cast<size_t>(options.min_inliers));
-  PrimitiveFitResult result;
+  CheckedFit checked;
   {
     py::gil_scoped_release release;
     EstimateTrustedNormalsIfMissing(&in);
-    result = FitPrimitive(in.cloud.points, in.cloud.normals, options);
+    // The command line's checks (fit/detect/checked_fit.h): a real primitive or a failure.
+    Neighbourhoods nb;
+    if (in.cloud.has_normals() && in.cloud.size() >= kMinCheckedPoints)
+      nb = FindNeighbourhoods(in.cloud.points);
+    checked = FitCheckedPrimitive(in.cloud.points, in.cloud.normals, nb.indices, nb.spacing,
+                                  options);
   }
+  const PrimitiveFitResult& result = checked.result;
   py::object model = result.success ? py::cast(result.ToModel(options.kind)) : py::none();
-  return py::make_tuple(
-      model, ToPython(PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action)));
+  nlohmann::json report = PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action);
+  report["check"] = checked.ToJson();
+  return py::make_tuple(model, ToPython(report));
 }
 
 py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Model& init) {
@@ -178,11 +193,14 @@ void BindFits(py::module_& m) {
   m.def(
       "fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
       py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
-      py::arg("estimator") = "robust",
+      py::arg("estimator") = "robust", py::arg("band") = py::none(),
       "Fit of one primitive (plane, sphere, cylinder, cone, torus; quadric-patch and\n"
       "cubic-patch go to fit_patch), as `implicitfit fit CLOUD --model KIND`.\n"
       "points, normals: (N, 3) arrays (normals None: estimated and oriented as the command\n"
-      "line does). threshold: initial inlier band (None: 1% of the bounding-box diagonal).\n"
+      "line does). threshold: a fixed inlier distance |f| < threshold (as Open3D's\n"
+      "segment_plane distance_threshold); band: instead, the start of the adaptive band, then 3\n"
+      "sigma (None: from the cloud's noise). On a cloud of many surfaces the result is a real\n"
+      "primitive of the kind or a failure (report[\"check\"], as the command line).\n"
       "fix: {field: value}, e.g. {\"radius\": 2, \"axis\": [0, 0, 1]}.\n"
       "estimator: \"robust\" (default), \"least-squares\" (every point, ISO 10360-6) or\n"
       "\"minimum-zone\" (Chebyshev, ISO 1101), as `implicitfit fit --estimator`.\n"

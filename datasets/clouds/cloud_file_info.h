@@ -32,11 +32,14 @@ struct CloudFileInfo {
   // Per-point properties present in the file and deliberately not used (colour, intensity,
   // labels, curvature, ...).
   std::vector<std::string> ignored_properties;
-  // Per-point integer labels: of labelled text clouds (.xyzl: "x y z label", e.g. the Fit4CAD
-  // primitive number) and of PLY/PCD files with a "label" property (e.g. `detect --ply`);
-  // empty otherwise. The fits ignore them (PLY/PCD list them in ignored_properties).
+  // Per-point integer labels: the .xyzl label column ("x y z label", e.g. the Fit4CAD primitive
+  // number), or a PLY/PCD field "label" (PCL's PointXYZL), "scalar_label" (CloudCompare) or
+  // "segment_index" (CGAL), the first of them the file has, when its values are integers; else
+  // empty. One per returned point (dropped records dropped here too). Such fields are still
+  // listed in ignored_properties: the reading itself does not use them.
   std::vector<int> labels;
-  // Per-point "residual" property of PLY/PCD files (`detect --ply`, `fit --ply`); empty otherwise.
+  // Per-point "residual" (or "scalar_residual") property of PLY/PCD files (`detect --ply`,
+  // `fit --ply`); empty otherwise.
   std::vector<double> residuals;
 };
 

@@ -80,9 +80,15 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
   for (const pcl::PCLPointField* f : xyz)
     if (!f) throw FileError(path, "no x, y and z fields (a point cloud needs all three)");
   const bool has_normals = nxyz[0] && nxyz[1] && nxyz[2];
-  // Kept beside the points for viewers (view/): a segmentation's labels and residuals.
-  const pcl::PCLPointField* label = FindField(blob, "label");
+  // Per-point labels: the first of these fields the file has (PCL's PointXYZL, CloudCompare,
+  // CGAL's shape detection output), one value per point.
+  const pcl::PCLPointField* label = nullptr;
+  for (const char* name : {"label", "scalar_label", "segment_index"})
+    if (!label && (label = FindField(blob, name)) && label->count > 1) label = nullptr;
+  // Kept beside the points for viewers (view/): a segmentation's residuals ("scalar_residual":
+  // the CloudCompare name `detect --ply` writes).
   const pcl::PCLPointField* residual = FindField(blob, "residual");
+  if (!residual) residual = FindField(blob, "scalar_residual");
   // The readers have already checked the sizes against the header; this guards the offsets.
   for (const pcl::PCLPointField& f : blob.fields) {
     if (FieldSize(f.datatype) == 0)
@@ -109,6 +115,7 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
   }
 
   PointCloud cloud;
+  bool integral_labels = true;
   cloud.points.reserve(records);
   if (has_normals) cloud.normals.reserve(records);
   for (std::size_t i = 0; i < records; ++i) {
@@ -123,8 +130,10 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
     }
     cloud.points.push_back(p);
     if (label) {
-      const double l = FieldValue(record + label->offset, label->datatype);
-      out.labels.push_back(std::isfinite(l) && std::abs(l) < 2e9 ? static_cast<int>(l) : -1);
+      const double v = FieldValue(record + label->offset, label->datatype);
+      integral_labels = integral_labels && std::isfinite(v) && v == std::round(v) &&
+                        std::abs(v) < 2147483647.0;
+      out.labels.push_back(integral_labels ? static_cast<int>(v) : -1);
     }
     if (residual) out.residuals.push_back(FieldValue(record + residual->offset, residual->datatype));
     if (has_normals) {
@@ -134,6 +143,7 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
     }
   }
   if (cloud.points.empty()) throw FileError(path, "no points with finite coordinates");
+  if (!integral_labels) out.labels.clear();  // a real-valued field of that name: no labels
   return cloud;
 }
 

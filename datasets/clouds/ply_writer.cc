@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 
 #include "datasets/io/atomic_file.h"
@@ -19,13 +20,33 @@ bool HostIsLittleEndian() {
 }
 
 template <typename T>
-void AppendLittleEndian(std::string* out, double value, bool swap) {
-  const T v = static_cast<T>(value);
+void AppendLittleEndian(std::string* out, T v, bool swap) {
   char bytes[sizeof(T)];
   std::memcpy(bytes, &v, sizeof v);
   if (swap)
     for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
   out->append(bytes, sizeof v);
+}
+
+// One vertex property: its PLY type and the value of point i.
+struct Column {
+  enum Type { kReal, kInt, kUchar } type;
+  std::string name;
+  std::function<double(size_t)> value;
+};
+
+void CheckSizes(const PointCloud& cloud, const std::vector<double>& residuals,
+                const PlyWriteOptions& options) {
+  auto check = [&](size_t n, const char* what) {
+    if (n != 0 && n != cloud.size())
+      throw std::invalid_argument("WritePlyFile: " + std::to_string(n) + " " + what + " for " +
+                                  std::to_string(cloud.size()) + " points");
+  };
+  check(residuals.size(), "residuals");
+  check(options.labels.size(), "labels");
+  check(options.colours.size(), "colours");
+  if (cloud.has_normals() && cloud.normals.size() != cloud.size())
+    throw std::invalid_argument("WritePlyFile: normals do not match the points");
 }
 
 }  // namespace
@@ -35,70 +56,71 @@ void AppendLittleEndian(std::string* out, double value, bool swap) {
 // into place (no partial file); the format itself is a dozen header lines and packed records.
 void WritePlyFile(const PointCloud& cloud, const std::string& path,
                   const std::vector<double>& residuals, const PlyWriteOptions& options) {
-  if (!residuals.empty() && residuals.size() != cloud.size())
-    throw std::invalid_argument("WritePlyFile: " + std::to_string(residuals.size()) +
-                                " residuals for " + std::to_string(cloud.size()) + " points");
-  if (cloud.has_normals() && cloud.normals.size() != cloud.size())
-    throw std::invalid_argument("WritePlyFile: normals do not match the points");
-  if (!options.labels.empty() && options.labels.size() != cloud.size())
-    throw std::invalid_argument("WritePlyFile: " + std::to_string(options.labels.size()) +
-                                " labels for " + std::to_string(cloud.size()) + " points");
-  const bool has_labels = !options.labels.empty();
-  const char* type = options.single ? "float" : "double";
+  CheckSizes(cloud, residuals, options);
+  std::vector<Column> columns;
+  for (int k = 0; k < 3; ++k)
+    columns.push_back(
+        {Column::kReal, std::string(1, "xyz"[k]), [&, k](size_t i) { return cloud.points[i][k]; }});
+  if (cloud.has_normals())
+    for (int k = 0; k < 3; ++k)
+      columns.push_back({Column::kReal, std::string("n") + "xyz"[k],
+                         [&, k](size_t i) { return cloud.normals[i][k]; }});
+  if (!options.colours.empty()) {
+    const char* names[3] = {"red", "green", "blue"};
+    for (int k = 0; k < 3; ++k)
+      columns.push_back(
+          {Column::kUchar, names[k], [&, k](size_t i) { return options.colours[i][k]; }});
+  }
+  if (!options.labels.empty()) {
+    columns.push_back({Column::kInt, "label", [&](size_t i) { return options.labels[i]; }});
+    if (options.cloudcompare_fields)
+      columns.push_back(
+          {Column::kInt, "scalar_label", [&](size_t i) { return options.labels[i]; }});
+  }
+  if (!residuals.empty())
+    columns.push_back({Column::kReal, options.cloudcompare_fields ? "scalar_residual" : "residual",
+                       [&](size_t i) { return residuals[i]; }});
+
+  const char* real = options.single ? "float" : "double";
   std::string out = "ply\nformat ";
   out += options.ascii ? "ascii" : "binary_little_endian";
   out +=
       " 1.0\ncomment written by implicitfit\nelement vertex " + std::to_string(cloud.size()) + "\n";
-  std::vector<std::string> names = {"x", "y", "z"};
-  if (cloud.has_normals()) names.insert(names.end(), {"nx", "ny", "nz"});
-  for (const std::string& name : names) out += std::string("property ") + type + " " + name + "\n";
-  if (has_labels) out += "property int label\n";
-  if (!residuals.empty()) {
-    names.push_back("residual");
-    out += std::string("property ") + type + " residual\n";
+  size_t record = 0;
+  for (const Column& c : columns) {
+    const char* type = c.type == Column::kReal ? real : c.type == Column::kInt ? "int" : "uchar";
+    out += std::string("property ") + type + " " + c.name + "\n";
+    record += c.type == Column::kReal ? (options.single ? 4 : 8) : c.type == Column::kInt ? 4 : 1;
   }
   out += "end_header\n";
 
   const bool swap = !HostIsLittleEndian();
-  const size_t width = names.size();
-  out.reserve(out.size() + cloud.size() * width * (options.ascii ? 25 : options.single ? 4 : 8));
-  double row[7];
+  out.reserve(out.size() + cloud.size() * (options.ascii ? 25 * columns.size() : record));
   char text[32];
-  for (size_t i = 0; i < cloud.size(); ++i) {
-    for (int k = 0; k < 3; ++k) row[k] = cloud.points[i][k];
-    if (cloud.has_normals())
-      for (int k = 0; k < 3; ++k) row[3 + k] = cloud.normals[i][k];
-    if (!residuals.empty()) row[width - 1] = residuals[i];
-    const size_t label_at = cloud.has_normals() ? 6 : 3;  // the label precedes the residual
-    auto append_label = [&]() {
-      if (options.ascii) {
-        out += std::to_string(options.labels[i]);
-        out += label_at == width ? '\n' : ' ';
-      } else {
-        const std::int32_t v = options.labels[i];
-        char bytes[4];
-        std::memcpy(bytes, &v, 4);
-        if (swap) std::swap(bytes[0], bytes[3]), std::swap(bytes[1], bytes[2]);
-        out.append(bytes, 4);
-      }
-    };
-    for (size_t k = 0; k < width; ++k) {
-      if (has_labels && k == label_at) append_label();
-      if (!std::isfinite(row[k]))
-        throw std::invalid_argument("WritePlyFile: " + names[k] + " of point " + std::to_string(i) +
+  for (size_t i = 0; i < cloud.size(); ++i)
+    for (size_t k = 0; k < columns.size(); ++k) {
+      const Column& c = columns[k];
+      const double v = c.value(i);
+      if (!std::isfinite(v))
+        throw std::invalid_argument("WritePlyFile: " + c.name + " of point " + std::to_string(i) +
                                     " is NaN or infinite");
       if (options.ascii) {
-        std::snprintf(text, sizeof text, options.single ? "%.9g" : "%.17g", row[k]);
+        if (c.type == Column::kReal)
+          std::snprintf(text, sizeof text, options.single ? "%.9g" : "%.17g", v);
+        else
+          std::snprintf(text, sizeof text, "%d", static_cast<int>(v));
         out += text;
-        out += k + 1 == width && !(has_labels && label_at == width) ? '\n' : ' ';
+        out += k + 1 == columns.size() ? '\n' : ' ';
+      } else if (c.type == Column::kInt) {
+        AppendLittleEndian<std::int32_t>(&out, static_cast<std::int32_t>(v), swap);
+      } else if (c.type == Column::kUchar) {
+        out += static_cast<char>(static_cast<std::uint8_t>(v));
       } else if (options.single) {
-        AppendLittleEndian<float>(&out, row[k], swap);
+        AppendLittleEndian<float>(&out, static_cast<float>(v), swap);
       } else {
-        AppendLittleEndian<double>(&out, row[k], swap);
+        AppendLittleEndian<double>(&out, v, swap);
       }
     }
-    if (has_labels && label_at == width) append_label();
-  }
   WriteFileAtomically(path, out);
 }
 

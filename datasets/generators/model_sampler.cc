@@ -190,7 +190,21 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
                s * w * mesh.vertices[t[2]]);
   };
 
+  // The leaves (every node without children), for the truth labels.
+  for (size_t k = 0; k < model.nodes().size(); ++k)
+    if (model.nodes()[k].children.empty()) out.leaf_nodes.push_back(static_cast<int>(k));
+  auto leaf_of = [&](const Vec& x) {
+    int best = -1;
+    double best_f = 1e-8 * diagonal;
+    for (size_t l = 0; l < out.leaf_nodes.size(); ++l) {
+      const double f =
+          std::abs(model.EvaluateNode(out.leaf_nodes[l], model.parameters().data(), x.data()));
+      if (f <= best_f) best_f = f, best = static_cast<int>(l);
+    }
+    return best;
+  };
   std::vector<Vec> pts, nrm;
+  std::vector<int> leaf;
   long attempts = 0;
   const long max_attempts = 200L * options.count + 10000;
   while (static_cast<int>(pts.size()) < inliers) {
@@ -224,12 +238,14 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
     if (partial && n.dot(view) < view_cos) continue;
     pts.push_back(x + options.noise * gauss(rng) * n);
     nrm.push_back(n);
+    leaf.push_back(leaf_of(x));
   }
   out.is_outlier.assign(pts.size(), false);
   for (int i = 0; i < outliers; ++i) {
     pts.push_back(uniform_in_box());
     nrm.push_back(Vec(gauss(rng), gauss(rng), gauss(rng)).normalized());
     out.is_outlier.push_back(true);
+    leaf.push_back(-1);
   }
   // Interleave outliers with inliers (deterministic shuffle) so file order tells nothing.
   std::vector<size_t> order(pts.size());
@@ -240,6 +256,7 @@ SampledCloud SampleModel(const Model& model, const SampleOptions& options) {
     out.cloud.points.push_back(pts[order[i]]);
     out.cloud.normals.push_back(nrm[order[i]]);
     outlier_flags[i] = out.is_outlier[order[i]];
+    out.primitive.push_back(leaf[order[i]]);
   }
   out.is_outlier = outlier_flags;
   return out;

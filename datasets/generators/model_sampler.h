@@ -37,6 +37,12 @@ struct SampleOptions {
 struct SampledCloud {
   PointCloud cloud;
   std::vector<bool> is_outlier;      // truth, one per point
+  // Truth labels, one per point: the index (among the model's leaf nodes, in node order) of
+  // the leaf whose zero set the point was drawn on, i.e. the leaf with the smallest |f| at the
+  // projected point when that is below 1e-8 of the box diagonal; -1 for outliers and for
+  // points on no leaf (a smooth blend's fillet).
+  std::vector<int> primitive;
+  std::vector<int> leaf_nodes;       // the node index (Model::nodes) of each leaf
   Eigen::Vector3d box_min, box_max;  // the box that was sampled
 };
 

@@ -12,7 +12,7 @@ namespace {
 // Covariance of p_i and its neighbours, centred on p_i first (cancels large coordinates), then
 // about the mean.
 Eigen::Matrix3d LocalCovariance(const std::vector<Eigen::Vector3d>& points, size_t i,
-                                const std::vector<int>& nb) {
+                                const NeighbourGraph::Row& nb) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int j : nb) mean += points[j] - points[i];
   mean /= static_cast<double>(nb.size() + 1);
@@ -25,14 +25,14 @@ Eigen::Matrix3d LocalCovariance(const std::vector<Eigen::Vector3d>& points, size
 }
 
 Eigen::Vector3d PcaNormal(const std::vector<Eigen::Vector3d>& points, size_t i,
-                          const std::vector<int>& nb) {
+                          const NeighbourGraph::Row& nb) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(LocalCovariance(points, i, nb));
   return solver.eigenvectors().col(0).normalized();  // eigenvalues ascend
 }
 
 double MeanSize(const Neighbourhoods& nb) {
   double total = 0;
-  for (const auto& list : nb.indices) total += static_cast<double>(list.size());
+  for (size_t i = 0; i < nb.indices.size(); ++i) total += static_cast<double>(nb.indices[i].size());
   return nb.indices.empty() ? 0.0 : total / static_cast<double>(nb.indices.size());
 }
 
@@ -59,7 +59,10 @@ std::vector<double> SurfaceVariation(const std::vector<Eigen::Vector3d>& points,
   return variation;
 }
 
-NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& options) {
+NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& options,
+                                   Neighbourhoods* neighbourhoods) {
+  Neighbourhoods local;
+  Neighbourhoods& nb = neighbourhoods ? *neighbourhoods : local;
   NormalResult result;
   const bool estimate = !cloud->has_normals() || options.reestimate;
   if (estimate && cloud->size() < 3)
@@ -69,7 +72,7 @@ NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& optio
     result.action = "read from file";
     return result;
   }
-  const Neighbourhoods nb = FindNeighbourhoods(cloud->points, options.neighbourhood);
+  nb = FindNeighbourhoods(cloud->points, options.neighbourhood);
   result.mean_neighbours = MeanSize(nb);
   result.duplicates = nb.duplicates;
   // Reports say how many points repeat an earlier one (searched once: neighbourhoods.h).

@@ -47,7 +47,11 @@ struct NormalResult {
 
 // Fills cloud->normals when empty (or when options.reestimate), and orients them. Throws
 // std::invalid_argument for fewer than 3 points when normals have to be estimated.
-NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& options = {});
+// neighbourhoods (optional): receives the neighbourhoods the normals were estimated or checked
+// with (FindNeighbourhoods with options.neighbourhood), so a caller that needs them too (the
+// detector) does not search again; left empty for clouds of fewer than 2 points.
+NormalResult EnsureOrientedNormals(PointCloud* cloud, const NormalOptions& options = {},
+                                   Neighbourhoods* neighbourhoods = nullptr);
 
 // Unoriented PCA normals (sign arbitrary), one per point.
 std::vector<Eigen::Vector3d> EstimatePcaNormals(const std::vector<Eigen::Vector3d>& points,

@@ -40,7 +40,7 @@ double MirroredAgreement(const std::vector<Eigen::Vector3d>& points,
 }
 
 std::vector<std::vector<int>> SymmetricNeighbourGraph(
-    const std::vector<std::vector<int>>& neighbours) {
+    const NeighbourGraph& neighbours) {
   std::vector<std::vector<int>> graph(neighbours.size());
   for (size_t i = 0; i < neighbours.size(); ++i)
     for (size_t k = 0; k < neighbours[i].size() && k < kMstNeighbours; ++k) {
@@ -83,7 +83,7 @@ size_t PropagateOrientation(const std::vector<Eigen::Vector3d>& points,
 }
 
 size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
-                                   const std::vector<std::vector<int>>& neighbours,
+                                   const NeighbourGraph& neighbours,
                                    std::vector<Eigen::Vector3d>* normals) {
   const size_t n = points.size();
   std::vector<Eigen::Vector3d>& nrm = *normals;
@@ -108,7 +108,7 @@ size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
 }
 
 double OpposedNeighbourFraction(const std::vector<Eigen::Vector3d>& normals,
-                                const std::vector<std::vector<int>>& neighbours) {
+                                const NeighbourGraph& neighbours) {
   size_t parallel = 0, opposed = 0;
   for (size_t i = 0; i < normals.size(); ++i)
     for (int j : neighbours[i]) {

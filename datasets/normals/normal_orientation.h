@@ -26,6 +26,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "datasets/clouds/neighbour_graph.h"
+
 namespace implicitfit {
 
 size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points,
@@ -33,7 +35,7 @@ size_t OrientTowardViewpoint(const std::vector<Eigen::Vector3d>& points,
                              std::vector<Eigen::Vector3d>* normals);
 
 size_t OrientByMinimumSpanningTree(const std::vector<Eigen::Vector3d>& points,
-                                   const std::vector<std::vector<int>>& neighbours,
+                                   const NeighbourGraph& neighbours,
                                    std::vector<Eigen::Vector3d>* normals);
 
 // The MST's agreement a_ij = (M n_i) . n_j, M the reflection across the plane bisecting p_i p_j
@@ -43,7 +45,7 @@ double MirroredAgreement(const std::vector<Eigen::Vector3d>& points,
 
 // The MST's graph: each point joined to its first 8 neighbours, made symmetric.
 std::vector<std::vector<int>> SymmetricNeighbourGraph(
-    const std::vector<std::vector<int>>& neighbours);
+    const NeighbourGraph& neighbours);
 
 // The MST's propagation on its own: the seeds keep their signs and are marked visited, then
 // Prim's tree grows from all of them at once into the unvisited points (marking them), each
@@ -54,6 +56,6 @@ size_t PropagateOrientation(const std::vector<Eigen::Vector3d>& points,
                             std::vector<Eigen::Vector3d>* normals);
 
 double OpposedNeighbourFraction(const std::vector<Eigen::Vector3d>& normals,
-                                const std::vector<std::vector<int>>& neighbours);
+                                const NeighbourGraph& neighbours);
 
 }  // namespace implicitfit

@@ -29,7 +29,7 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points) {
   const Neighbourhoods nb = FindNeighbourhoods(points);
   std::vector<double> share(n), variation(n);
   for (size_t i = 0; i < n; ++i) {
-    const std::vector<int>& list = nb.indices[i];
+    const NeighbourGraph::Row list = nb.indices[i];
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (int j : list) mean += points[j] - points[i];
     mean /= static_cast<double>(list.size() + 1);
@@ -61,9 +61,10 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points) {
   return t;
 }
 
-PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action) {
+PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action,
+                                    Neighbourhoods* neighbourhoods) {
   std::string action;
-  PointCloud cloud = ReadOrientedCloud(path, &action);
+  PointCloud cloud = ReadOrientedCloud(path, &action, true, nullptr, neighbourhoods);
   if (action.rfind("estimated", 0) == 0) {
     const NormalTrust trust = AssessEstimatedNormals(cloud.points);
     if (!trust.trusted) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "datasets/clouds/point_cloud.h"
+#include "datasets/normals/neighbourhoods.h"
 
 namespace implicitfit {
 
@@ -32,6 +33,9 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points);
 // ReadOrientedCloud (datasets/normals/oriented_cloud.h) for the primitive fitter: estimated normals
 // that AssessEstimatedNormals does not trust are dropped, so the fit hypothesises from points
 // alone; normals_action then says "estimated, not trusted (...): fit from points only".
-PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action);
+// neighbourhoods (optional): those the normals were estimated or checked with (empty when the
+// cloud was too small for them).
+PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action,
+                                    Neighbourhoods* neighbourhoods = nullptr);
 
 }  // namespace implicitfit

@@ -37,7 +37,7 @@ std::vector<Eigen::Vector3d> SphereDirections(int count) {
 }  // namespace
 
 VisibilityOrientationResult OrientPatchesByVisibility(
-    const std::vector<Eigen::Vector3d>& points, const std::vector<std::vector<int>>& neighbours,
+    const std::vector<Eigen::Vector3d>& points, const NeighbourGraph& neighbours,
     double spacing, const std::vector<double>& variation, std::vector<Eigen::Vector3d>* normals,
     const VisibilityOrientationOptions& options) {
   VisibilityOrientationResult result;

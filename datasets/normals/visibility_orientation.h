@@ -27,6 +27,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "datasets/clouds/neighbour_graph.h"
+
 namespace implicitfit {
 
 struct VisibilityOrientationOptions {
@@ -49,7 +51,7 @@ struct VisibilityOrientationResult {
 // neighbours: each point's neighbours, nearest first (the first 8 make the patch graph);
 // spacing: the sampling spacing (Neighbourhoods::spacing); variation: SurfaceVariation().
 VisibilityOrientationResult OrientPatchesByVisibility(
-    const std::vector<Eigen::Vector3d>& points, const std::vector<std::vector<int>>& neighbours,
+    const std::vector<Eigen::Vector3d>& points, const NeighbourGraph& neighbours,
     double spacing, const std::vector<double>& variation, std::vector<Eigen::Vector3d>* normals,
     const VisibilityOrientationOptions& options = {});
 

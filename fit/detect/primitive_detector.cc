@@ -6,19 +6,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <iterator>
 #include <numeric>
 #include <random>
 #include <stdexcept>
 #include <thread>
 
+#include "fit/detect/detection_scales.h"
 #include "fit/detect/local_primitive_refit.h"
 #include "fit/primitive/minimal_samples.h"
 #include "fit/detect/patch_hypotheses.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/primitive/primitive_function.h"
 #include "fit/detect/restricted_normals.h"
-#include "fit/detect/surface_noise.h"
+#include "fit/detect/surface_merging.h"
 #include "fit/common/thread_count.h"
 #include "model/median.h"
 #include "model/worker_threads.h"
@@ -30,10 +32,12 @@ using Eigen::Vector3d;
 
 constexpr int kMaxRefitPoints = 2000;  // points of a growth refit (evenly spread subset)
 constexpr int kMaxCostPoints = 4000;   // points of the kind-selection cost
+constexpr size_t kMaxRefinePoints = 100000;  // points of the final ML refinement (subset above)
 constexpr int kGrowthRounds = 8;       // refit-and-regrow rounds of one candidate
 // Each kind's growth from a seed stops at this many points (breadth-first from the seed's patch:
 // a local region is enough for the refit, which uses kMaxRefitPoints of them, and for the kind
-// choice); the winning kind's support is then grown without limit once (Complete). Above every
+// choice); the winning kind's support is grown without limit once, when the candidate is accepted
+// (over the points still free then: a conflicting candidate is never completed). Above every
 // benchmark cloud's size (31 374 points), so it only changes large clouds, where each kind's
 // every refit round regrew the whole support (10^6 points: growth took about 55% of the time).
 constexpr size_t kMaxGrowthPoints = 50000;
@@ -41,9 +45,7 @@ constexpr double kKeepFraction = 0.8;       // a candidate is accepted if this m
 constexpr double kSimplerFraction = 0.97;   // a simpler kind explaining this much wins
 constexpr double kMaxRmsSigmas = 2.0;       // a candidate's RMS must stay under this * sigma
 constexpr double kFarFactor = 10.0;         // shapes beyond this many cloud diagonals: degenerate
-constexpr double kMaxNoiseToSpacing = 0.4;  // noisier than this * spacing: a volume, no surface
 constexpr int kFallbackSteps = 3;           // crease points join a primitive this close
-constexpr double kIncoherentNormalDeg = 15.0;  // median neighbour normal angle of a volume
 constexpr double kMergeFraction = 0.8;  // pieces merge when each explains this much of the other
 constexpr int kMaxSplitPieces = 3;      // primitives of the split test's alternative
 // A simpler curved kind replaces the winner only if its penalised cost is at most this times
@@ -126,10 +128,11 @@ struct Scales {
 class Detector {
  public:
   Detector(const std::vector<Vector3d>& x, const std::vector<Vector3d>& n,
-           const std::vector<std::vector<int>>& nb, const Scales& scales, int min_points,
+           const NeighbourGraph& nb, const Scales& scales, int min_points,
            const DetectionOptions& options)
       : x_(x),
-        n_(n),
+        input_n_(n),
+        n_(&n),
         nb_(nb),
         tau_(scales.tau),
         cos_(scales.cos_theta),
@@ -138,13 +141,31 @@ class Detector {
         options_(options),
         labels_(x.size(), -1) {}
 
+  // Progress line (options_.progress), and a figure for the seed rounds.
+  void Tell(const std::string& message) const {
+    if (options_.progress) options_.progress(message);
+  }
+  std::string Assigned() const {
+    size_t assigned = 0;
+    for (int l : labels_) assigned += l >= 0;
+    char line[120];
+    std::snprintf(line, sizeof line, "%zu primitives, %zu of %zu points assigned",
+                  primitives_.size(), assigned, labels_.size());
+    return line;
+  }
+
+  // The truncated-Gaussian cost of a residual r (the kind selection's likelihood).
+  double Cost(double r) const {
+    return std::min(r * r / (sigma_ * sigma_), (tau_ / sigma_) * (tau_ / sigma_));
+  }
+
   bool Supports(const PrimitiveFunction& f, int i) const { return Supports(f, i, tau_); }
   bool Supports(const PrimitiveFunction& f, int i, double band) const {
     Vector3d g;
     const double r = f(x_[i], &g);
     if (!(std::abs(r) < band)) return false;
     const double gn = g.norm();
-    return gn > 0 && std::abs(g.dot(n_[i])) >= cos_ * gn;
+    return gn > 0 && std::abs(g.dot((*n_)[i])) >= cos_ * gn;
   }
 
   struct Workspace {
@@ -217,7 +238,7 @@ class Detector {
     for (int s = 0; s < m; ++s) {
       const int i = patch[pick(rng)];
       p.push_back(x_[i]);
-      q.push_back(n_[i]);
+      q.push_back((*n_)[i]);
     }
     switch (kind) {
       case NodeType::kPlane:
@@ -316,13 +337,6 @@ class Detector {
     double band = 0.0;         // and in which band
   };
 
-  // The whole support of a capped growth (the kind's final parameters, no limit).
-  void Complete(NodeType kind, Grown* g, Workspace& w) const {
-    if (!g->capped) return;
-    g->support = Grow(PrimitiveFunction(kind, g->params), g->sources, w, g->band);
-    g->capped = false;
-  }
-
   // Best hypothesis of `kind` on the patch, refitted and grown.
   Grown GrowKind(NodeType kind, const std::vector<int>& patch, std::mt19937& rng,
                  Workspace& w) const {
@@ -335,7 +349,7 @@ class Detector {
         kind == NodeType::kPlane ? std::max(4, options_.hypotheses / 3) : options_.hypotheses;
     // Try 0: the fit to the whole patch (fit/detect/patch_hypotheses.h), then minimal samples.
     std::vector<Vector3d> px, pn;
-    for (int i : patch) px.push_back(x_[i]), pn.push_back(n_[i]);
+    for (int i : patch) px.push_back(x_[i]), pn.push_back((*n_)[i]);
     for (int t = -1; t < tries; ++t) {
       if (t < 0) {
         const bool ok = kind == NodeType::kPlane      ? PlaneFromPatch(px, pn, &h)
@@ -401,10 +415,10 @@ class Detector {
       }
       // The least-squares fit to the final support (the kind selection compares fitted models).
       std::vector<double> refit = best.params;
-      const double rms =
-          RefitPrimitiveLocally(kind, x_, Spread(best.support, kMaxRefitPoints), &refit, 30);
+      const std::vector<int> spread = Spread(best.support, kMaxRefitPoints);
+      const double rms = RefitPrimitiveLocally(kind, x_, spread, &refit, 30);
       if (rms >= 0 && Finite(refit)) best.params = std::move(refit);
-      // A growth stopped at kMaxGrowthPoints is completed by Complete() if the kind wins.
+      // A growth stopped at kMaxGrowthPoints is completed when its candidate is accepted.
       best.band = band;
       best.capped = best.support.size() >= kMaxGrowthPoints;
       if (best.capped) best.sources = patch_support(best.params);
@@ -421,8 +435,33 @@ class Detector {
     NodeType kind = NodeType::kPlane;
     std::vector<double> params;
     std::vector<int> support;
+    // A support stopped at kMaxGrowthPoints: completed (grown without limit from `sources` in
+    // `band`) only when the candidate is accepted, over the points still free then.
+    bool capped = false;
+    std::vector<int> sources;
+    double band = 0.0;
     std::vector<int> patch;
   };
+
+  // The whole support of a capped candidate over the points free now, refitted and regrown
+  // while it grows by 2% or more (the refit of a growth stopped at kMaxGrowthPoints saw only
+  // the region around its seed: a plane's small tilt there leaves the band far away and would
+  // cut a large face in two). Sorted.
+  std::vector<int> CompleteSupport(Candidate* c, Workspace& w) const {
+    std::vector<int> support = Grow(PrimitiveFunction(c->kind, c->params), c->sources, w, c->band);
+    for (int round = 0; round < kGrowthRounds; ++round) {
+      std::vector<double> refit = c->params;
+      if (RefitPrimitiveLocally(c->kind, x_, Spread(support, kMaxRefitPoints), &refit, 30) < 0 ||
+          !Finite(refit) || !Reasonable(c->kind, refit))
+        break;
+      std::vector<int> grown = Grow(PrimitiveFunction(c->kind, refit), c->sources, w, c->band);
+      if (grown.size() < 1.02 * support.size()) break;
+      c->params = std::move(refit);
+      support = std::move(grown);
+    }
+    std::sort(support.begin(), support.end());
+    return support;
+  }
 
   // Seedable: the point's normal agrees (within theta) with those of its first 8 neighbours; in
   // the leftover pass, with those of them that are free (at least kMinFreeSeedNeighbours).
@@ -432,7 +471,7 @@ class Detector {
     for (size_t k = 0; k < std::min<size_t>(8, nb_[i].size()); ++k) {
       const int j = nb_[i][k];
       if (leftover_pass_ && labels_[j] >= 0) continue;
-      if (std::abs(n_[i].dot(n_[j])) < cos_) return false;
+      if (std::abs((*n_)[i].dot((*n_)[j])) < cos_) return false;
       ++compared;
     }
     return !leftover_pass_ || compared >= kMinFreeSeedNeighbours;
@@ -457,16 +496,12 @@ class Detector {
     auto allowed = [&](NodeType k) {
       return DegreesOfFreedom(k) < DegreesOfFreedom(kinds[winner]);
     };
-    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     const double ln_u = std::log(static_cast<double>(all.size()));
     auto cost_of = [&](const std::vector<PrimitiveFunction>& pieces, int dof) {
       double cost = 0;
       for (int i : u) {
-        double c = cap;
-        for (const auto& f : pieces) {
-          const double q = f(x_[i]);
-          c = std::min(c, q * q / (sigma_ * sigma_));
-        }
+        double c = Cost(INFINITY);  // the cap
+        for (const auto& f : pieces) c = std::min(c, Cost(f(x_[i])));
         cost += c;
       }
       return cost * scale + dof * ln_u;
@@ -543,17 +578,13 @@ class Detector {
     all.erase(std::unique(all.begin(), all.end()), all.end());
     const std::vector<int> u = Spread(all, kMaxCostPoints);
     const double scale = all.size() / static_cast<double>(u.size());
-    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     double best_cost = INFINITY;
     size_t best = 0;
     std::vector<double> costs(grown.size());
     for (size_t k = 0; k < grown.size(); ++k) {
       const PrimitiveFunction f(kinds[k], grown[k].params);
       double cost = 0;
-      for (int i : u) {
-        const double r = f(x_[i]);
-        cost += std::min(r * r / (sigma_ * sigma_), cap);
-      }
+      for (int i : u) cost += Cost(f(x_[i]));
       cost = cost * scale + DegreesOfFreedom(kinds[k]) * std::log(static_cast<double>(all.size()));
       costs[k] = cost;
       if (cost < best_cost) best_cost = cost, best = k;
@@ -581,10 +612,12 @@ class Detector {
       const int first = SplitTest(best, grown, kinds, all, u, scale, rng, w);
       if (first >= 0) best = first;
     }
-    Complete(kinds[best], &grown[best], w);
     c.kind = kinds[best];
     c.params = std::move(grown[best].params);
     c.support = std::move(grown[best].support);
+    c.capped = grown[best].capped;
+    c.sources = std::move(grown[best].sources);
+    c.band = grown[best].band;
     std::vector<double> band;
     if (c.kind == NodeType::kSphere && CylinderKindAllowed() && BandCylinder(c.support, &band))
       c.kind = NodeType::kCylinder, c.params = std::move(band);
@@ -603,21 +636,32 @@ class Detector {
     std::vector<int> pool;
     for (int i = 0; i < N; ++i)
       if (Seedable(i)) pool.push_back(i);
+    Tell("first pass: seeds among " + std::to_string(pool.size()) + " points");
     Rounds(std::move(pool), 0, result);
+    Tell("first pass done: " + Assigned());
     std::vector<char> free(N, 0);
     int free_points = 0;
     for (int i = 0; i < N; ++i) free_points += free[i] = labels_[i] < 0;
     if (free_points < min_points_) return;
-    const std::vector<Vector3d> original = n_;
-    n_ = RestrictedNormals(x_, original, nb_, free);
+    const std::vector<Vector3d> restricted = RestrictedNormals(x_, input_n_, nb_, free);
+    n_ = &restricted;
     leftover_pass_ = true;
     pool.clear();
     for (int i = 0; i < N; ++i)
       if (free[i] && Seedable(i)) pool.push_back(i);
+    Tell("leftover pass: seeds among " + std::to_string(pool.size()) + " free points");
     Rounds(std::move(pool), 1, result);
+    Tell("leftover pass done: " + Assigned());
     leftover_pass_ = false;
-    for (int i = 0; i < N; ++i)
-      if (labels_[i] < 0) n_[i] = original[i];
+    n_ = &input_n_;
+    bool assigned = false;
+    for (int i = 0; i < N && !assigned; ++i) assigned = free[i] && labels_[i] >= 0;
+    if (assigned) {  // points the leftover pass assigned keep their re-estimated normals
+      own_n_ = input_n_;
+      for (int i = 0; i < N; ++i)
+        if (free[i] && labels_[i] >= 0) own_n_[i] = restricted[i];
+      n_ = &own_n_;
+    }
   }
 
   // Seed rounds from `pool` (seedable points) until the stop rule; `pass` enters the seeds' RNGs.
@@ -628,6 +672,7 @@ class Detector {
     std::vector<char> tried(N, 0);
     std::mt19937 rng(options_.seed + pass);
     int free_points = 0, failures = 0;
+    auto last_told = std::chrono::steady_clock::now();
     for (int i = 0; i < N; ++i) free_points += labels_[i] < 0;
     for (int round = 0; !pool.empty(); ++round) {
       // Seeds: uniform among the untried free seedable points (ineligible ones are dropped lazily).
@@ -673,12 +718,18 @@ class Detector {
           pool.push_back(seeds[b]);  // conflicted: may be seeded again
           continue;
         }
+        if (c.capped) free = CompleteSupport(&c, workspaces[0]);
         const int id = static_cast<int>(primitives_.size());
         for (int i : free) labels_[i] = id;
         free_points -= static_cast<int>(free.size());
         primitives_.push_back({c.kind, std::move(c.params), {}, std::move(free), 0.0, "unknown"});
         ++result->candidates_accepted;
         failures = 0;
+      }
+      if (options_.progress &&
+          std::chrono::steady_clock::now() - last_told > std::chrono::seconds(3)) {
+        last_told = std::chrono::steady_clock::now();
+        Tell("  " + std::to_string(result->seeds) + " seeds: " + Assigned());
       }
       // Stop once a primitive of min_points points among the free ones would have been seeded
       // with 99% probability by the failed seeds in a row.
@@ -759,7 +810,7 @@ class Detector {
       return n;
     };
     std::vector<Vector3d> px, pn;
-    for (int i : s) px.push_back(x_[i]), pn.push_back(n_[i]);
+    for (int i : s) px.push_back(x_[i]), pn.push_back((*n_)[i]);
     std::vector<std::vector<double>> hypotheses;
     std::vector<double> h;
     if ((kind == NodeType::kPlane && PlaneFromPatch(px, pn, &h)) ||
@@ -787,12 +838,8 @@ class Detector {
   double PenalisedCost(NodeType kind, const std::vector<double>& params,
                        const std::vector<int>& s) const {
     const PrimitiveFunction f(kind, params);
-    const double cap = (tau_ / sigma_) * (tau_ / sigma_);
     double cost = 0;
-    for (int i : s) {
-      const double r = f(x_[i]);
-      cost += std::min(r * r / (sigma_ * sigma_), cap);
-    }
+    for (int i : s) cost += Cost(f(x_[i]));
     return cost +
            DegreesOfFreedom(kind) * std::log(static_cast<double>(std::max<size_t>(2, s.size())));
   }
@@ -872,8 +919,7 @@ class Detector {
       for (size_t m = 0; m < s.size(); ++m) {
         for (int o = 0; o < K; ++o) {
           if (o == k || !Supports(fs[o], s[m])) continue;
-          const double r = fs[o](x_[s[m]]);
-          other[m] = std::min(other[m], r * r / (sigma_ * sigma_));
+          other[m] = std::min(other[m], Cost(fs[o](x_[s[m]])));
         }
         own += other[m] == cap;
       }
@@ -883,8 +929,7 @@ class Detector {
         const PrimitiveFunction f(kind, q);
         double c = 0;
         for (size_t m = 0; m < s.size(); ++m) {
-          const double r = f(x_[s[m]]);
-          c += std::min(other[m], r * r / (sigma_ * sigma_));
+          c += std::min(other[m], Cost(f(x_[s[m]])));
         }
         return c * p.points.size() / s.size() + DegreesOfFreedom(kind) * penalty;
       };
@@ -946,10 +991,12 @@ class Detector {
     // Boxes of the supports, widened by tau and a few spacings (reassigned points lie next to
     // them).
     std::vector<Eigen::AlignedBox3d> boxes(K);
+    std::vector<double> bands(K, tau_);  // a merged plane's own band (fit/detect/surface_merging.h)
     for (int k = 0; k < K; ++k) {
+      if (k < static_cast<int>(band_.size())) bands[k] = std::max(tau_, band_[k]);
       for (int i : primitives_[k].points) boxes[k].extend(x_[i]);
-      boxes[k].min().array() -= margin_;
-      boxes[k].max().array() += margin_;
+      boxes[k].min().array() -= margin_ + bands[k];
+      boxes[k].max().array() += margin_ + bands[k];
     }
     std::vector<PrimitiveFunction> fs;
     for (const auto& p : primitives_) fs.emplace_back(p.kind, p.parameters);
@@ -973,8 +1020,8 @@ class Detector {
           Vector3d g;
           const double r = std::abs(fs[k](x_[i], &g));
           const double gn = g.norm();
-          if (!(r < tau_) || !(gn > 0)) continue;
-          const double cos = std::abs(g.dot(n_[i])) / gn;
+          if (!(r < bands[k]) || !(gn > 0)) continue;
+          const double cos = std::abs(g.dot((*n_)[i])) / gn;
           if (cos >= cos_ && better(r, cos, labels[i], best, best_cos))
             best = r, best_cos = cos, labels[i] = k;
           if (better(r, cos, fallback[i], best_any, best_any_cos))
@@ -1013,8 +1060,16 @@ class Detector {
       if (static_cast<int>(q.size()) > best_size[labels[i]])
         best_size[labels[i]] = static_cast<int>(q.size()), best_component[labels[i]] = id;
     }
+    // Merged planes (several pieces of one wall) keep every part of the smallest primitive's
+    // size; the others their largest.
+    std::vector<int> component_size(next, 0);
     for (int i = 0; i < N; ++i)
-      if (labels[i] >= 0 && component[i] != best_component[labels[i]]) labels[i] = -1;
+      if (labels[i] >= 0) ++component_size[component[i]];
+    for (int i = 0; i < N; ++i) {
+      if (labels[i] < 0 || component[i] == best_component[labels[i]]) continue;
+      const bool multi = labels[i] < static_cast<int>(multi_part_.size()) && multi_part_[labels[i]];
+      if (!(multi && component_size[component[i]] >= min_points_)) labels[i] = -1;
+    }
     std::vector<int> order;
     for (int k = 0; k < K; ++k)
       if (best_size[k] >= min_points_) order.push_back(k);
@@ -1032,6 +1087,15 @@ class Detector {
     labels_ = std::move(labels);
   }
 
+  // The final "one surface or two" (fit/detect/surface_merging.h): planes of two parallel sheets
+  // split, pieces of one plane merged. Returns {splits, merges}.
+  std::pair<int, int> SplitAndMergeSurfaces() {
+    const SurfaceMergeContext c{x_, *n_, nb_, tau_, cos_, min_points_};
+    const int splits = SplitParallelSheets(c, &primitives_, &labels_);
+    const int merges = MergeSameSurfaces(c, &primitives_, &labels_, &band_, &multi_part_);
+    return {splits, merges};
+  }
+
   // Maximum-likelihood refinement of `fit` on each primitive's points, then its figures.
   void Refine() {
     const int K = static_cast<int>(primitives_.size());
@@ -1039,12 +1103,16 @@ class Detector {
     ParallelFor(K, threads, [&](int k, int) {
       DetectedPrimitive& p = primitives_[k];
       if (options_.refine) {
+        // Primitives above kMaxRefinePoints are refined on an evenly spread subset of their
+        // points (memory: the fit copies its points), the standard deviations scaled by
+        // sqrt(subset / points): the information grows with the number of points.
+        const std::vector<int> s = Spread(p.points, kMaxRefinePoints);
         std::vector<Vector3d> px, pn;
-        for (int i : p.points) px.push_back(x_[i]), pn.push_back(n_[i]);
+        for (int i : s) px.push_back(x_[i]), pn.push_back((*n_)[i]);
         PrimitiveFitOptions fo;
         fo.kind = p.kind;
         fo.initial = p.parameters;
-        fo.threshold = tau_;
+        fo.start_band = tau_;  // adaptive: the ML refinement re-estimates its band
         fo.normal_cos = cos_;
         fo.num_threads = 1;
         fo.min_inliers = 8;
@@ -1054,6 +1122,8 @@ class Detector {
         if (r.success && Finite(r.parameters)) {
           p.parameters = r.parameters;
           p.standard_deviations = r.standard_deviations;
+          const double scale = std::sqrt(static_cast<double>(s.size()) / p.points.size());
+          for (double& sd : p.standard_deviations) sd *= scale;
         }
       }
       const PrimitiveFunction f(p.kind, p.parameters);
@@ -1063,7 +1133,7 @@ class Detector {
         Vector3d g;
         const double r = f(x_[i], &g);
         ss += r * r;
-        along += g.dot(n_[i]) > 0;
+        along += g.dot((*n_)[i]) > 0;
       }
       const int n = static_cast<int>(p.points.size());
       p.rms_distance = n > 0 ? std::sqrt(ss / n) : 0.0;
@@ -1076,13 +1146,21 @@ class Detector {
   }
 
   double margin_ = 0.0, diagonal_ = 0.0;
+  // Per primitive after the surface merge: its band and whether it is made of several pieces.
+  std::vector<double> band_;
+  std::vector<char> multi_part_;
   std::vector<DetectedPrimitive> primitives_;
   const std::vector<int>& labels() const { return labels_; }
 
  private:
   const std::vector<Vector3d>& x_;
-  std::vector<Vector3d> n_;  // a copy: the leftover pass re-estimates the free points' normals
-  const std::vector<std::vector<int>>& nb_;
+  // The normals in use: the input's, the leftover pass's re-estimated ones during that pass,
+  // then (only when that pass assigned points) a copy of the input with those points' new
+  // normals; no copy of the input otherwise (memory: 24 bytes a point each).
+  const std::vector<Vector3d>& input_n_;
+  const std::vector<Vector3d>* n_;
+  std::vector<Vector3d> own_n_;
+  const NeighbourGraph& nb_;
   double tau_, cos_, sigma_;
   int min_points_;
   const DetectionOptions& options_;
@@ -1116,7 +1194,7 @@ bool DetectionOptions::IsValid(std::string* error) const {
 
 DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
                                  const std::vector<Vector3d>& normals,
-                                 const std::vector<std::vector<int>>& neighbours, double spacing,
+                                 const NeighbourGraph& neighbours, double spacing,
                                  const DetectionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string error;
@@ -1125,8 +1203,8 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   if (normals.size() != N || neighbours.size() != N)
     throw std::invalid_argument(
         "DetectPrimitives: points, normals and neighbourhoods differ in count");
-  for (const auto& nb : neighbours)
-    for (int j : nb)
+  for (size_t i = 0; i < N; ++i)
+    for (int j : neighbours[i])
       if (j < 0 || static_cast<size_t>(j) >= N)
         throw std::invalid_argument("DetectPrimitives: neighbour index out of range");
   DetectionResult result;
@@ -1144,42 +1222,15 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
   std::vector<Vector3d> x(N);
   for (size_t i = 0; i < N; ++i) x[i] = points[i] - centroid;
 
-  // Noise and normal spread from the neighbourhoods (evenly spread subset of the points).
-  std::vector<double> tangent, angle;
-  const size_t stride = std::max<size_t>(1, N / 20000);
-  for (size_t i = 0; i < N; i += stride) {
-    std::vector<double> d, a;
-    for (size_t k = 0; k < std::min<size_t>(8, neighbours[i].size()); ++k) {
-      const int j = neighbours[i][k];
-      d.push_back(std::abs(normals[i].dot(x[j] - x[i])));
-      a.push_back(std::acos(std::min(1.0, std::abs(normals[i].dot(normals[j])))));
-    }
-    if (d.empty()) continue;
-    tangent.push_back(Median(d));
-    angle.push_back(Median(a));
-  }
-  // The tangent-plane figure (the surface's sagitta included) decides whether the cloud fills a
-  // volume; the bands use the curvature-free noise (mid-normal distances, fit/detect/surface_noise.h).
-  const double tangent_noise = 1.4826 * Median(tangent);
-  result.noise = EstimateSurfaceNoise(x, normals, neighbours, stride);
-  result.threshold =
-      options.threshold > 0 ? options.threshold : std::max(3.0 * result.noise, 0.1 * spacing);
-  const double median_angle_deg = Median(angle) * 180.0 / M_PI;
-  result.normal_angle_deg = options.normal_angle_deg > 0
-                                ? options.normal_angle_deg
-                                : std::clamp(3.0 * median_angle_deg, 20.0, 45.0);
+  const DetectionScales ds = EstimateDetectionScales(x, normals, neighbours, spacing,
+                                                     options.threshold, options.normal_angle_deg);
+  result.noise = ds.noise;
+  result.threshold = ds.threshold;
+  result.normal_angle_deg = ds.normal_angle_deg;
   if (!(result.threshold > 0)) return result;  // all points coincide
-  // Points filling a volume (e.g. uniform random points) lie off any tangent plane by about half
-  // their spacing (measured: 0.58 s) and their normals disagree from one neighbour to the next
-  // (median angle above 15 degrees); sampled surfaces lie far closer (0.05 to 0.15 s on the
-  // benchmark clouds), and a dense scan noisier than its spacing still has coherent normals when
-  // they come from the scanner or a larger scale. A cloud failing both has no surface at its
-  // sampling scale; an explicit threshold overrides this.
-  if (options.threshold <= 0 && tangent_noise > kMaxNoiseToSpacing * spacing &&
-      median_angle_deg > kIncoherentNormalDeg)
-    return result;
+  if (ds.volume) return result;                // no surface at the sampling scale
   const Scales scales{result.threshold, std::cos(result.normal_angle_deg * M_PI / 180.0),
-                      std::clamp(result.noise, result.threshold / 10, result.threshold / 3)};
+                      ds.likelihood_sigma};
 
   Detector detector(x, normals, neighbours, scales, result.min_points, options);
   detector.margin_ = result.threshold + 3.0 * spacing;
@@ -1188,10 +1239,23 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
     for (const auto& p : x) box.extend(p);
     detector.diagonal_ = box.diagonal().norm();
   }
+  if (options.progress) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "%zu points: spacing %.4g, noise %.4g, band %.4g, normal band %.0f deg, smallest "
+                  "primitive %d points",
+                  N, spacing, result.noise, result.threshold, result.normal_angle_deg,
+                  result.min_points);
+    options.progress(line);
+  }
   detector.Run(&result);
+  detector.Tell("final stage: kinds, merging, re-assignment, refinement");
   result.simplified = detector.Simplify();
   result.merges = detector.Merge();
   result.simplified += detector.Rekind();
+  const auto [splits, surface_merges] = detector.SplitAndMergeSurfaces();
+  result.splits = splits;
+  result.merges += surface_merges;
   detector.Reassign();
   detector.Refine();
 
@@ -1205,6 +1269,12 @@ DetectionResult DetectPrimitives(const std::vector<Vector3d>& points,
     result.primitives.push_back(std::move(p));
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.progress) {
+    char line[120];
+    std::snprintf(line, sizeof line, "%zu primitives in %.2f s", result.primitives.size(),
+                  result.seconds);
+    options.progress(line);
+  }
   return result;
 }
 

@@ -80,10 +80,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "model/model.h"
+#include "datasets/clouds/neighbour_graph.h"
 
 namespace implicitfit {
 
@@ -99,6 +101,9 @@ struct DetectionOptions {
   int hypotheses = 24;            // minimal-sample hypotheses per kind per seed
   int seeds_per_round = 16;       // seeds evaluated in parallel per round (fixed: determinism)
   bool refine = true;             // final maximum-likelihood refinement (Ceres)
+  // Progress: told a line at each stage and every few seconds of the seed rounds (the `detect`
+  // command prints it on stderr); empty: nothing. Called on the detecting thread.
+  std::function<void(const std::string&)> progress;
 
   bool IsValid(std::string* error) const;
 };
@@ -120,7 +125,7 @@ struct DetectionResult {
   std::vector<double> residuals;              // per point: f of its primitive (0 when none)
   double spacing = 0.0, noise = 0.0, threshold = 0.0, normal_angle_deg = 0.0;
   int min_points = 0;
-  int seeds = 0, candidates_accepted = 0, merges = 0, simplified = 0;
+  int seeds = 0, candidates_accepted = 0, merges = 0, simplified = 0, splits = 0;
   double seconds = 0.0;
 };
 
@@ -129,7 +134,7 @@ struct DetectionResult {
 // Throws std::invalid_argument when the sizes disagree or the options are invalid.
 DetectionResult DetectPrimitives(const std::vector<Eigen::Vector3d>& points,
                                  const std::vector<Eigen::Vector3d>& normals,
-                                 const std::vector<std::vector<int>>& neighbours, double spacing,
+                                 const NeighbourGraph& neighbours, double spacing,
                                  const DetectionOptions& options = {});
 
 }  // namespace implicitfit

@@ -11,7 +11,7 @@ constexpr double kMinSpread = 4.0;     // the second eigenvalue must exceed this
 
 std::vector<Eigen::Vector3d> RestrictedNormals(const std::vector<Eigen::Vector3d>& points,
                                                const std::vector<Eigen::Vector3d>& normals,
-                                               const std::vector<std::vector<int>>& neighbours,
+                                               const NeighbourGraph& neighbours,
                                                const std::vector<char>& free) {
   std::vector<Eigen::Vector3d> out = normals;
   for (size_t i = 0; i < points.size(); ++i) {

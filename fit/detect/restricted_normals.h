@@ -13,11 +13,13 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "datasets/clouds/neighbour_graph.h"
+
 namespace implicitfit {
 
 std::vector<Eigen::Vector3d> RestrictedNormals(const std::vector<Eigen::Vector3d>& points,
                                                const std::vector<Eigen::Vector3d>& normals,
-                                               const std::vector<std::vector<int>>& neighbours,
+                                               const NeighbourGraph& neighbours,
                                                const std::vector<char>& free);
 
 }  // namespace implicitfit

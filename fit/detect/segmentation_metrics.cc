@@ -1,21 +1,27 @@
 #include "fit/detect/segmentation_metrics.h"
 
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
 
 namespace implicitfit {
 
-SegmentationMetrics CompareSegmentations(const std::vector<int>& truth,
-                                         const std::vector<NodeType>& truth_kinds,
-                                         const std::vector<int>& detected,
-                                         const std::vector<NodeType>& detected_kinds,
-                                         double min_fraction) {
+namespace {
+
+// truth_kinds null: kinds not known (every kind agrees).
+SegmentationMetrics Compare(const std::vector<int>& truth, int G,
+                            const std::vector<NodeType>* truth_kinds,
+                            const std::vector<int>& detected,
+                            const std::vector<NodeType>& detected_kinds, double min_fraction) {
+  auto same_kind_as = [&](int g, NodeType kind) {
+    return !truth_kinds || (*truth_kinds)[g] == kind;
+  };
   if (truth.size() != detected.size())
     throw std::invalid_argument("CompareSegmentations: " + std::to_string(truth.size()) +
                                 " truth labels, " + std::to_string(detected.size()) +
                                 " detected labels");
-  const int G = static_cast<int>(truth_kinds.size()), D = static_cast<int>(detected_kinds.size());
+  const int D = static_cast<int>(detected_kinds.size());
   std::vector<long> g_size(G, 0), d_size(D, 0);
   std::map<std::pair<int, int>, long> overlap;
   long labelled = 0, covered = 0;
@@ -51,7 +57,7 @@ SegmentationMetrics CompareSegmentations(const std::vector<int>& truth,
     m.mean_iou += m.iou[g];
     if (m.iou[g] >= 0.5) {
       ++m.segmented;
-      const bool kind_ok = detected_kinds[g_match[g]] == truth_kinds[g];
+      const bool kind_ok = same_kind_as(g, detected_kinds[g_match[g]]);
       same_kind += kind_ok;
       m.recovered += kind_ok;
     }
@@ -60,14 +66,35 @@ SegmentationMetrics CompareSegmentations(const std::vector<int>& truth,
     if (d_size[d] < min_fraction * N) continue;
     ++m.detected_counted;
     const int g = d_match[d];
-    if (g >= 0 && iou(g, d) >= 0.5 && truth_kinds[g] == detected_kinds[d]) ++m.precise;
+    if (g >= 0 && iou(g, d) >= 0.5 && same_kind_as(g, detected_kinds[d])) ++m.precise;
   }
   m.recall = m.truth_counted ? static_cast<double>(m.recovered) / m.truth_counted : 0.0;
   m.precision = m.detected_counted ? static_cast<double>(m.precise) / m.detected_counted : 0.0;
   m.mean_iou = m.truth_counted ? m.mean_iou / m.truth_counted : 0.0;
-  m.kind_accuracy = m.segmented ? static_cast<double>(same_kind) / m.segmented : 0.0;
+  m.kind_accuracy = !truth_kinds  ? std::nan("")
+                    : m.segmented ? static_cast<double>(same_kind) / m.segmented
+                                  : 0.0;
   m.coverage = labelled ? static_cast<double>(covered) / labelled : 0.0;
   return m;
+}
+
+}  // namespace
+
+SegmentationMetrics CompareSegmentations(const std::vector<int>& truth,
+                                         const std::vector<NodeType>& truth_kinds,
+                                         const std::vector<int>& detected,
+                                         const std::vector<NodeType>& detected_kinds,
+                                         double min_fraction) {
+  return Compare(truth, static_cast<int>(truth_kinds.size()), &truth_kinds, detected,
+                 detected_kinds, min_fraction);
+}
+
+SegmentationMetrics CompareSegmentationsWithoutKinds(const std::vector<int>& truth,
+                                                     int truth_count,
+                                                     const std::vector<int>& detected,
+                                                     const std::vector<NodeType>& detected_kinds,
+                                                     double min_fraction) {
+  return Compare(truth, truth_count, nullptr, detected, detected_kinds, min_fraction);
 }
 
 }  // namespace implicitfit

@@ -11,6 +11,8 @@
 //   kind accuracy  among counted ground-truth primitives with IoU(g, match(g)) >= 0.5, the
 //                fraction whose match has the same kind (segmentation right, is the kind?);
 //   coverage     ground-truth labelled points assigned to some detected primitive, over them.
+// Without truth kinds (a labelled scan that does not say what each segment is), recall and
+// precision ask IoU >= 0.5 only, and kind accuracy is NaN.
 #pragma once
 
 #include <vector>
@@ -35,5 +37,11 @@ SegmentationMetrics CompareSegmentations(const std::vector<int>& truth_labels,
                                          const std::vector<int>& detected_labels,
                                          const std::vector<NodeType>& detected_kinds,
                                          double min_fraction = 0.01);
+// The same when the truth's kinds are not known: `truth_count` primitives, labels 0..count-1.
+SegmentationMetrics CompareSegmentationsWithoutKinds(const std::vector<int>& truth_labels,
+                                                     int truth_count,
+                                                     const std::vector<int>& detected_labels,
+                                                     const std::vector<NodeType>& detected_kinds,
+                                                     double min_fraction = 0.01);
 
 }  // namespace implicitfit

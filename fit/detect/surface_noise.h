@@ -15,12 +15,14 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "datasets/clouds/neighbour_graph.h"
+
 namespace implicitfit {
 
 // neighbours: each point's nearest neighbours (itself excluded), nearest first. Returns 0 when no
 // point has a neighbour.
 double EstimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points,
                             const std::vector<Eigen::Vector3d>& normals,
-                            const std::vector<std::vector<int>>& neighbours, size_t stride = 1);
+                            const NeighbourGraph& neighbours, size_t stride = 1);
 
 }  // namespace implicitfit

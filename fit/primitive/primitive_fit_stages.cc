@@ -312,7 +312,9 @@ Reclassification Reclassify(NodeType kind, const std::vector<double>& params,
   });
   r.sigma = 1.4826 * Median(abs_r);
   r.band = std::max(options.band_sigmas * r.sigma, 1e-12);
-  if (normals.empty()) {
+  if (options.threshold > 0) {
+    r.band = options.threshold;  // a fixed inlier distance: no re-estimation
+  } else if (normals.empty()) {
     // Few points: with N - k redundant residuals the median misjudges the scale (N = k + 1:
     // one residual direction, most |f| near 0); the residual standard error sqrt(RSS/(N - k))
     // bounds the band from below.

@@ -53,7 +53,9 @@ PrimitiveFitResult Fit(const std::vector<Eigen::Vector3d>& input_points,
 
   const RecentredCloud cloud = Recentre(input_points);
   const std::vector<Eigen::Vector3d>& pts = cloud.points;
-  const double tau = options.threshold > 0 ? options.threshold : 0.01 * cloud.diagonal;
+  const double tau = options.threshold > 0    ? options.threshold
+                     : options.start_band > 0 ? options.start_band
+                                              : 0.01 * cloud.diagonal;
 
   // Without normals: hypotheses from points alone (fit/metrology/point_hypotheses.h).
   result.points_only = !has_normals;
@@ -184,6 +186,11 @@ bool PrimitiveFitOptions::IsValid(std::string* error) const {
   if (!initial.empty() && static_cast<int>(initial.size()) != NumParametersOf(k))
     return fail("initial parameters: " + std::to_string(initial.size()) + " values, a " +
                 NodeTypeName(k) + " has " + std::to_string(NumParametersOf(k)));
+  if (!(threshold >= 0) || !std::isfinite(threshold) || !(start_band >= 0) ||
+      !std::isfinite(start_band))
+    return fail("threshold and start_band must be >= 0 and finite");
+  if (threshold > 0 && start_band > 0)
+    return fail("a fixed threshold and an adaptive start band exclude each other");
   if (score_subsample < 10 || working_subsample < 10)
     return fail("subsamples must hold >= 10 points");
   if (!(normal_cos >= 0 && normal_cos <= 1)) return fail("normal_cos must be in [0, 1]");

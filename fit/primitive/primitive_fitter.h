@@ -3,15 +3,17 @@
 // 1. Hypotheses from minimal samples of oriented points (fit/primitive/minimal_samples.h), drawn with a
 //    seeded RNG, scored on a subsample: a point supports a hypothesis when |f| < tau and, when
 //    normals are given, |cos(grad f, n)| >= normal_cos (sign-agnostic: unoriented normals work).
-//    tau defaults to 1% of the cloud's bounding-box diagonal.
+//    tau is `threshold` when given, else `start_band`, else 1% of the bounding-box diagonal.
 // 2. Robust refinement to the maximum-likelihood fit on the inliers: least squares of the
 //    orthogonal distances f(x_i) (every primitive's f is an exact signed distance) over the
 //    current inlier set, in Ceres with closed-form derivatives (fit/primitive/primitive_jacobians.h), each
 //    chunk of points one residual block of P + 1 residuals with the same normal equations
 //    (fit/primitive/compressed_distance_cost.h);
-//    then the noise scale is re-estimated as sigma = 1.4826 median |f| of the inliers and the
-//    inlier band reset to |f| < band_sigmas * sigma; repeated until the inlier set is stable,
-//    first on a random working subset of the points, then on all of them.
+//    then (adaptive band, the default) the noise scale is re-estimated as sigma = 1.4826 median
+//    |f| of the inliers and the inlier band reset to |f| < band_sigmas * sigma; with a fixed
+//    `threshold` the band stays |f| < threshold (Open3D's segment_plane distance_threshold,
+//    PCL's setDistanceThreshold); repeated until the inlier set is stable, first on a random
+//    working subset of the points, then on all of them.
 //    Axes and normals live on ceres::SphereManifold<3>; radii are bounded below by 0 and the
 //    cone angle to (0, pi/2) inside the solver (never clipped afterwards).
 // Without normals (a coordinate-measuring machine's points, or estimated normals the reader did
@@ -47,7 +49,11 @@ struct PrimitiveFitOptions {
   double confidence = 0.999;          // stop once an all-inlier sample was drawn this surely
   int score_subsample = 2000;         // points used to score hypotheses
   int working_subsample = 5000;       // points of the coarse refinement rounds
-  double threshold = 0.0;             // initial inlier band tau; <= 0: 1% of the bbox diagonal
+  // Inlier band. threshold > 0: a fixed inlier distance |f| < threshold in every round (the
+  // meaning Open3D and PCL give it). Otherwise adaptive: start_band (> 0; else 1% of the bbox
+  // diagonal) for the hypotheses and the first round, then band_sigmas * the estimated sigma.
+  double threshold = 0.0;
+  double start_band = 0.0;
   double normal_cos = 0.8;            // inlier normal agreement |cos| (used when normals exist)
   double band_sigmas = 3.0;           // final inlier band in units of the estimated sigma
   int max_rounds = 8;                 // refit / re-classify rounds

@@ -60,7 +60,7 @@ Sample NoisyCylinder(double r, double h, double step, double noise, unsigned see
 
 // The detector's former figure: 1.4826 median over points of the median over their first 8
 // neighbours of the distance to the point's tangent plane.
-double TangentPlaneNoise(const Sample& s, const std::vector<std::vector<int>>& nb) {
+double TangentPlaneNoise(const Sample& s, const NeighbourGraph& nb) {
   std::vector<double> figures;
   for (size_t i = 0; i < s.points.size(); ++i) {
     std::vector<double> d;
