@@ -18,9 +18,6 @@
 #include "datasets/generators/model_sampler.h"
 #include "datasets/normals/normal_estimation.h"
 #include "support/sign_agreement.h"
-#include "datasets/io/model_file.h"
-#include "datasets/clouds/xyz_writer.h"
-#include <cstdlib>
 
 namespace implicitfit {
 namespace {
@@ -47,7 +44,14 @@ int NonPositiveOnBoxFaces(const Model& m, const Vec& lo, const Vec& hi, double s
   return bad;
 }
 
-void CheckPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
+// The reconstruction of the points-only scan, and the truth's verdict on its model: "" when it
+// meets every check above, otherwise the checks it fails.
+struct PointsOnlyOutcome {
+  CloudReconstruction job;
+  std::string truth_failures;
+};
+
+PointsOnlyOutcome ReconstructPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
   const double size = (solid.box_max - solid.box_min).maxCoeff();
   const double sigma = 0.002 * size;
   SampleOptions so;
@@ -59,30 +63,18 @@ void CheckPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
   so.box_max = solid.box_max;
   PointCloud cloud = SampleModel(solid.truth, so).cloud;
   cloud.normals.clear();  // points only
-  if (const char* dump = std::getenv("DUMP_DIR")) {  // DEBUG
-    std::string base = std::string(dump) + "/" + solid.name.substr(0, solid.name.find(' '));
-    WriteXyzFile(cloud, base + ".xyz");
-    WriteModelFile(solid.truth, base + "_truth.json");
-  }
   const NormalResult normals = EnsureOrientedNormals(&cloud);
   const CloudReconstruction job = ReconstructCloud(cloud, solid.name, normals.action, seed);
   const SolidReconstruction& r = job.result;
   std::printf("  %s: %zu primitives, expression %s\n  %s, %.1f s (tree fit %.1f s, %d blends)\n",
               solid.name.c_str(), job.primitives.size(), r.expression.c_str(), r.message.c_str(),
               r.seconds, r.fit_seconds, static_cast<int>(r.blends.size()));
-  for (const BlendEstimate& b : r.blends)  // DEBUG
-    std::printf("    blend %s %s delta %.4f eps %.4f, %d points, %d iterations\n", b.node.c_str(),
-                b.type.c_str(), b.delta, b.epsilon, b.transition_points, r.fit_iterations);
-  if (std::getenv("DUMP_DIR"))  // DEBUG
-    for (size_t k = 0; k < job.primitives.size(); ++k) {
-      const Model& pm = job.primitives[k].model;
-      std::printf("    %s %s %s %d  [", job.primitives[k].name.c_str(),
-                  NodeTypeName(pm.nodes()[pm.root()].type), r.sides[k].c_str(),
-                  r.assigned[k]);
-      for (double v : pm.parameters()) std::printf(" %.3f", v);
-      std::printf(" ]\n");
-    }
-  ASSERT_TRUE(r.success) << r.message;
+  PointsOnlyOutcome out;
+  if (r.model.nodes().empty()) {
+    out.truth_failures = "no model";
+    out.job = job;
+    return out;
+  }
 
   SampleOptions clean = so;
   clean.noise = 0;
@@ -102,11 +94,46 @@ void CheckPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
       testsupport::SignAgreement(solid.truth, r.model, lo, hi, 0.03 * (hi - lo).maxCoeff(), seed);
   std::printf("  truth-point rms %.5f (3 sigma %.5f), sign agreement %.4f\n", rms, 3 * sigma,
               sign_share);
-  EXPECT_LE(rms, 3 * sigma);
-  EXPECT_GE(sign_share, 0.99);
-  for (const double scale : {1.5, 10.0, 1000.0})
-    EXPECT_EQ(NonPositiveOnBoxFaces(r.model, solid.box_min, solid.box_max, scale), 0)
-        << "box " << scale << " times the part's";
+  char line[160];
+  if (!(rms <= 3 * sigma)) {
+    std::snprintf(line, sizeof line, "truth-point rms %.5f > 3 sigma %.5f; ", rms, 3 * sigma);
+    out.truth_failures += line;
+  }
+  if (!(sign_share >= 0.99)) {
+    std::snprintf(line, sizeof line, "sign agreement %.4f < 0.99; ", sign_share);
+    out.truth_failures += line;
+  }
+  for (const double scale : {1.5, 10.0, 1000.0}) {
+    const int bad = NonPositiveOnBoxFaces(r.model, solid.box_min, solid.box_max, scale);
+    if (bad > 0) {
+      std::snprintf(line, sizeof line, "f <= 0 at %d points of the box %g times the part's; ",
+                    bad, scale);
+      out.truth_failures += line;
+    }
+  }
+  out.job = job;
+  return out;
+}
+
+// Reconstructed, verified, and right by the truth.
+void CheckPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
+  const PointsOnlyOutcome o = ReconstructPointsOnly(solid, points, seed);
+  EXPECT_TRUE(o.job.result.success) << o.job.result.message;
+  EXPECT_EQ(o.truth_failures, "");
+}
+
+// Either the above, or refused by the verifier on a model the truth shows wrong: never a wrong
+// solid called a success, never a right one refused.
+void CheckPointsOnlyOrRightlyRefused(const GeneratedSolid& solid, int points, unsigned seed) {
+  const PointsOnlyOutcome o = ReconstructPointsOnly(solid, points, seed);
+  if (o.job.result.success) {
+    EXPECT_EQ(o.truth_failures, "");
+  } else {
+    EXPECT_NE(o.truth_failures, "") << "refused a solid the truth shows right: "
+                                    << o.job.result.message;
+    std::printf("  refused (%s); the truth: %s\n", o.job.result.message.c_str(),
+                o.truth_failures.c_str());
+  }
 }
 
 TEST(PointsOnlyReconstruction, FlangedShaftWithBlindBore) {
@@ -116,12 +143,17 @@ TEST(PointsOnlyReconstruction, LBracketWithFilletAndHoles) {
   CheckPointsOnly(LBracketSolid(), 8000, 1);
 }
 TEST(PointsOnlyReconstruction, DomeOnPlateWithHoles) { CheckPointsOnly(DomeOnPlateSolid(), 8000, 1); }
+// The older generated solids (datasets/generators/generated_solids.h), points only. The rounded
+// box's fillets are detected as cylinders today and its solid is refused (sign agreement 0.49
+// on one primitive, unsupported cavities: issue 24's open row), so it is held to the weaker
+// contract until detect reads fillets as such.
+TEST(PointsOnlyReconstruction, PlateWithFilletedBore) {
+  CheckPointsOnly(PlateWithFilletedBoreSolid(), 8000, 1);
+}
+TEST(PointsOnlyReconstruction, BossOnSlab) { CheckPointsOnly(BossOnSlabSolid(), 8000, 1); }
+TEST(PointsOnlyReconstruction, RoundedBoxVerifiedOrRightlyRefused) {
+  CheckPointsOnlyOrRightlyRefused(RoundedBoxSolid(), 8000, 1);
+}
 
 }  // namespace
 }  // namespace implicitfit
-// DEBUG
-namespace implicitfit { namespace {
-TEST(PointsOnlyReconstructionOld, RoundedBox) { CheckPointsOnly(RoundedBoxSolid(), 8000, 1); }
-TEST(PointsOnlyReconstructionOld, Plate) { CheckPointsOnly(PlateWithFilletedBoreSolid(), 8000, 1); }
-TEST(PointsOnlyReconstructionOld, Boss) { CheckPointsOnly(BossOnSlabSolid(), 8000, 1); }
-} }
