@@ -44,6 +44,8 @@ const std::vector<TypeInfo>& Types() {
          "coleman_features",
          {{"core_radius", 1, FieldRole::kPositiveLength},
           {"features", -ColemanFeatures::kPerFeature}}},
+        {NodeType::kBSplineSurface, "bspline_surface", {{"control_points", 0}}},
+        {NodeType::kBSplineVolume, "bspline_volume", {{"coefficients", 0}}},
     };
     t.insert(t.end(), others.begin(), others.end());
     return t;
@@ -126,6 +128,8 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
     throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset / AddPartition");
   if (type == NodeType::kBernsteinMesh)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinMesh for a bernstein_mesh");
+  if (type == NodeType::kBSplineSurface || type == NodeType::kBSplineVolume)
+    throw std::invalid_argument("AddPrimitive: use AddBSplineSurface / AddBSplineVolume");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -299,6 +303,14 @@ int Model::AddSkeletonOffsetWithFeatures(SkeletonKind kind, const std::vector<do
   if (!(radius > 0.0))
     throw std::invalid_argument("AddSkeletonOffsetWithFeatures: core radius must be > 0");
   const int index = AddSkeletonOffset(kind, points, radius, std::move(name));
+  return AddSkeletonFeatures(index, features);
+}
+
+int Model::AddSkeletonFeatures(int index, const std::vector<double>& features) {
+  if (features.empty() || features.size() % ColemanFeatures::kPerFeature != 0 ||
+      index != static_cast<int>(nodes_.size()) - 1 ||
+      nodes_[index].type != NodeType::kSkeletonOffset)
+    throw std::invalid_argument("AddSkeletonFeatures: 7 numbers per feature, on the last node");
   parameters_.insert(parameters_.end(), features.begin(), features.end());
   nodes_[index].num_parameters += static_cast<int>(features.size());
   return index;
@@ -340,6 +352,60 @@ int Model::AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuit
   node.grid = grid;
   node.continuity = continuity;
   return AddNode(std::move(node), control_points);
+}
+
+int Model::AddBSplineSurface(const SplineStructure& structure,
+                             const std::vector<double>& control_points, std::string name) {
+  const std::string problem = SurfaceStructureProblem(structure);
+  if (!problem.empty()) throw std::invalid_argument("AddBSplineSurface: " + problem);
+  const size_t count = 3 * static_cast<size_t>(structure.count[0]) * structure.count[1];
+  if (control_points.size() != count)
+    throw std::invalid_argument("AddBSplineSurface: " + std::to_string(count / 3) +
+                                " control points take " + std::to_string(count) + " numbers");
+  ModelNode node;
+  node.type = NodeType::kBSplineSurface;
+  node.name = std::move(name);
+  node.spline = structure;
+  node.spline.count[2] = 0;
+  node.count = structure.count[0] * structure.count[1];
+  return AddNode(std::move(node), control_points);
+}
+
+int Model::AddBSplineVolume(int degree, const double box[6], const int cells[3],
+                            const std::vector<double>& coefficients, std::string name) {
+  const std::string problem = VolumeStructureProblem(degree, box, cells);
+  if (!problem.empty()) throw std::invalid_argument("AddBSplineVolume: " + problem);
+  ModelNode node;
+  node.type = NodeType::kBSplineVolume;
+  node.name = std::move(name);
+  node.spline = BSplineVolumeStructure(degree, box, cells);
+  node.degree = degree;
+  const size_t count = static_cast<size_t>(node.spline.count[0]) * node.spline.count[1] *
+                       node.spline.count[2];
+  if (coefficients.size() != count)
+    throw std::invalid_argument("AddBSplineVolume: degree " + std::to_string(degree) +
+                                " on these cells takes " + std::to_string(count) +
+                                " coefficients");
+  return AddNode(std::move(node), coefficients);
+}
+
+int Model::AddCurveSkeletonOffset(const SplineStructure& curve, const std::vector<double>& vectors,
+                                  double radius, std::string name) {
+  const std::string problem = CurveStructureProblem(curve);
+  if (!problem.empty()) throw std::invalid_argument("AddCurveSkeletonOffset: " + problem);
+  const size_t count = 3 * static_cast<size_t>(CurveVectorCount(curve));
+  if (vectors.size() != count)
+    throw std::invalid_argument("AddCurveSkeletonOffset: the curve takes " +
+                                std::to_string(count) + " numbers");
+  ModelNode node;
+  node.type = NodeType::kSkeletonOffset;
+  node.name = std::move(name);
+  node.count = static_cast<int>(count / 3);
+  node.variant = static_cast<int>(SkeletonKind::kCurve);
+  node.spline = curve;
+  std::vector<double> p = vectors;
+  p.push_back(radius);
+  return AddNode(std::move(node), p);
 }
 
 int Model::AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon,

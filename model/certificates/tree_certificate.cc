@@ -5,6 +5,7 @@
 
 #include "model/certificates/convexity_certificate.h"
 #include "model/certificates/symmetric_eigen3.h"
+#include "model/splines/bspline_volume_certificate.h"
 
 namespace implicitfit {
 namespace {
@@ -96,6 +97,22 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
     case NodeType::kBernsteinMesh:
       return Leaf(TreeConvexity::kNotCertified,
                   "bernstein_mesh: certified by its own check (\"meshes\": convex on the box)");
+    case NodeType::kBSplineSurface:
+      return Leaf(TreeConvexity::kNotCertified,
+                  "bspline_surface: signed distance to an open patch, not certified");
+    case NodeType::kBSplineVolume: {
+      const VolumeConvexityCertificate c = CertifyVolumeConvexity(node.spline, p);
+      if (!c.convex)
+        return Leaf(TreeConvexity::kNotCertified,
+                    "bspline_volume: not every Hessian Bernstein coefficient matrix is positive "
+                    "definite");
+      NodeCertificate r =
+          Leaf(TreeConvexity::kConvexFunction,
+               "bspline_volume certified (Hessian Bernstein coefficients positive definite on "
+               "every cell): convex on its box");
+      r.domain_patches.push_back(index);
+      return r;
+    }
     case NodeType::kMorph:
     case NodeType::kUnion:
     case NodeType::kIntersection:

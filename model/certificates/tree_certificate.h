@@ -15,6 +15,8 @@
 //     convex function everywhere;
 //   torus, quadric with A indefinite, uncertified patch, paraboloid with curvature < 0,
 //   skeleton_offset of several elements, blobs, complement, partition: not certified.
+//   bspline_volume certified per cell (model/splines/bspline_volume_certificate.h): convex function
+//     on its box (`domain` names it); bspline_surface: not certified.
 // morph t f_A + (1 - t) f_B of two convex functions: convex function (convex combination).
 // Operators (n = order; children fold left to right, so the rule is applied to all children):
 //   intersection, n = 0 (sharp max, any smoothing): max of convex functions is convex; the
@@ -42,6 +44,7 @@ struct NodeCertificate {
   TreeConvexity convexity = TreeConvexity::kNotCertified;
   std::string rule;                 // why, in words (the leaf class or the operator rule)
   std::vector<int> domain_patches;  // f convex only within the tetrahedra of these patch nodes
+                                    // (or the boxes of these bspline_volume nodes)
                                     // (empty: everywhere)
 };
 

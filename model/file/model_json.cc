@@ -5,6 +5,7 @@
 #include <set>
 
 #include "model/file/bernstein_mesh_json.h"
+#include "model/file/spline_json.h"
 #include "model/primitives/primitive_kinds.h"
 
 namespace implicitfit {
@@ -312,6 +313,13 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   const json& s = node.at("skeleton");
   const std::string key = s.begin().key();
   const json& list = s.begin().value();
+  if (key == "curve") {  // model/file/spline_json.h
+    const double radius = Number(node, "radius", path);
+    RequirePositive(radius, path + ".radius");
+    const std::vector<double> features =
+        node.contains("features") ? ReadFeatureList(node, path) : std::vector<double>{};
+    return ReadCurveSkeletonOffset(list, where + ".curve", radius, features, name, model);
+  }
   SkeletonKind kind;
   if (key == "points")
     kind = SkeletonKind::kPoints;
@@ -322,7 +330,7 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   else if (key == "triangles")
     kind = SkeletonKind::kTriangles;
   else
-    Fail(where + "." + key, "unknown skeleton (points, segments, polyline or triangles)");
+    Fail(where + "." + key, "unknown skeleton (points, segments, polyline, triangles or curve)");
   const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
   if (!list.is_array() || list.size() < least)
     Fail(where + "." + key, "must be an array of at least " + std::to_string(least) +
@@ -512,6 +520,8 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kColemanFeatures) keys.insert("children");
   if (type == NodeType::kSkeletonOffset) keys.insert("features");  // docs/maths.md CO-2
   if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
+  if (type == NodeType::kBSplineSurface) keys.insert({"degree", "knots_u", "knots_v", "weights"});
+  if (type == NodeType::kBSplineVolume) keys.insert({"degree", "box", "cells"});
   return keys;
 }
 
@@ -595,6 +605,10 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     index = ReadSkeletonOffset(node, path, name, model);
   } else if (type == NodeType::kBernsteinMesh) {
     index = ReadBernsteinMeshNode(node, path, name, model);
+  } else if (type == NodeType::kBSplineSurface) {
+    index = ReadBSplineSurfaceNode(node, path, name, model);
+  } else if (type == NodeType::kBSplineVolume) {
+    index = ReadBSplineVolumeNode(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -678,7 +692,9 @@ json WriteNode(const Model& model, int index) {
     const int b = node.first_parameter, m = node.count;
     const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
     json list = json::array();
-    if (kind == SkeletonKind::kSegments) {
+    if (kind == SkeletonKind::kCurve) {
+      out["skeleton"] = WriteCurveSkeleton(model, node);
+    } else if (kind == SkeletonKind::kSegments) {
       for (int i = 0; i < m; i += 2)
         list.push_back(json::array({Slice(p, b + 3 * i, 3), Slice(p, b + 3 * i + 3, 3)}));
     } else if (kind == SkeletonKind::kTriangles) {
@@ -692,7 +708,7 @@ json WriteNode(const Model& model, int index) {
                       : kind == SkeletonKind::kSegments  ? "segments"
                       : kind == SkeletonKind::kTriangles ? "triangles"
                                                          : "polyline";
-    out["skeleton"] = json{{key, list}};
+    if (kind != SkeletonKind::kCurve) out["skeleton"] = json{{key, list}};
     out["radius"] = p[b + 3 * m];
     if (const int features = SkeletonFeatureCount(node))
       out["features"] = WriteFeatureList(p, b + 3 * m + 1, features);
@@ -707,6 +723,10 @@ json WriteNode(const Model& model, int index) {
     out["half_sizes"] = Slice(p, b + 7, 3);
   } else if (node.type == NodeType::kBernsteinMesh) {
     WriteBernsteinMeshNode(model, node, &out);
+  } else if (node.type == NodeType::kBSplineSurface) {
+    WriteBSplineSurfaceNode(model, node, &out);
+  } else if (node.type == NodeType::kBSplineVolume) {
+    WriteBSplineVolumeNode(model, node, &out);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);
