@@ -1,6 +1,6 @@
 // implicitfit detect CLOUD --out SCENE.json [--labels LABELS.txt] [--ply SEGMENTED.ply]
 //                    [--report R.json] [--kinds plane,sphere,cylinder,cone,torus]
-//                    [--threshold t] [--min-points m] [--seed s] [--threads n]
+//                    [--threshold t] [--min-points m] [--seed s] [--threads n] [--freeform]
 // Every primitive of a multi-primitive cloud, with its points (fit/detect/primitive_detector.h).
 // Exit 0 with at least one primitive, 1 when none is found (no scene written), 2 for invalid
 // usage or input.
@@ -19,6 +19,7 @@ struct DetectArgs {
   double threshold = 0.0;
   int min_points = 0, threads = 0;
   unsigned seed = 1;
+  bool freeform = false;
 };
 
 }  // namespace
@@ -45,6 +46,8 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "Random seed (the result depends on it only, not on threads)");
   cmd->add_option("--threads", a->threads, "Threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--freeform", a->freeform,
+                "Smooth regions no primitive explains become B-spline surfaces (docs/detect.md)");
   return [a]() {
     DetectionOptions options;
     options.kinds = DetectionKindsFromList(a->kinds);
@@ -52,7 +55,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
     options.min_points = a->min_points;
     options.seed = a->seed;
     options.num_threads = a->threads;
-    const CloudDetection d = DetectCloudFile(a->cloud, options);
+    const CloudDetection d = DetectCloudFile(a->cloud, options, a->freeform);
     if (!a->report.empty()) WriteFileAtomically(a->report, d.report.dump(2) + "\n");
     if (d.scene.primitives.empty()) {
       std::cerr << "implicitfit detect: " << a->cloud << ": no primitive found"

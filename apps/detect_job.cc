@@ -8,6 +8,7 @@
 #include "datasets/normals/oriented_cloud.h"
 #include "datasets/clouds/ply_writer.h"
 #include "fit/primitive/primitive_fitter.h"
+#include "fit/splines/freeform_detection.h"
 
 namespace implicitfit {
 
@@ -26,7 +27,46 @@ std::vector<NodeType> DetectionKindsFromList(const std::string& list) {
   return kinds;
 }
 
-CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options) {
+namespace {
+
+// detect --freeform: the smooth remainder as bspline_surface primitives, appended to the scene.
+void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& options,
+                         CloudDetection* d) {
+  DetectionResult& r = d->result;
+  FreeformOptions fo;
+  fo.noise = r.noise > 0 ? r.noise : 0.1 * r.threshold;
+  fo.threshold = r.threshold;
+  fo.normal_angle_deg = r.normal_angle_deg;
+  fo.min_points = std::max(r.min_points, 1);
+  fo.num_threads = options.num_threads;
+  const FreeformResult f =
+      DetectFreeformSurfaces(d->cloud.points, d->cloud.normals, nb.indices, fo,
+                             static_cast<int>(d->scene.primitives.size()), &r.labels, &r.residuals);
+  int assigned = 0;
+  for (const FreeformSurface& s : f.surfaces) {
+    ScenePrimitive p;
+    p.name = "p" + std::to_string(d->scene.primitives.size());
+    p.model = s.model;
+    p.points = static_cast<int>(s.points.size());
+    p.rms_distance = s.rms_distance;
+    p.normal_side = s.normal_side;
+    d->scene.primitives.push_back(std::move(p));
+    assigned += static_cast<int>(s.points.size());
+  }
+  d->scene.unassigned -= assigned;
+  d->report["unassigned"] = d->scene.unassigned;
+  d->report["primitives"] = d->scene.primitives.size();
+  d->report["freeform"] = {{"surfaces", f.surfaces.size()}, {"points", assigned},
+                           {"regions", f.regions},          {"region_points", f.region_points},
+                           {"fits", f.fits},                {"splits", f.splits},
+                           {"seconds", f.seconds}};
+  if (!f.surfaces.empty()) d->report["kinds"]["bspline_surface"] = f.surfaces.size();
+}
+
+}  // namespace
+
+CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options,
+                               bool freeform) {
   CloudDetection d;
   std::string normals_action;
   d.cloud = ReadOrientedCloud(path, &normals_action);
@@ -79,6 +119,7 @@ CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& 
   d.report["candidates_accepted"] = r.candidates_accepted;
   d.report["merges"] = r.merges;
   d.report["seconds"] = r.seconds;
+  if (freeform) AddFreeformSurfaces(nb, options, &d);
   return d;
 }
 

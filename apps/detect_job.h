@@ -25,8 +25,11 @@ struct CloudDetection {
   bool degenerate = false;  // too few points for normals: nothing could be detected
 };
 
-// Throws InputError (naming the file) when the cloud cannot be read.
-CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options);
+// Throws InputError (naming the file) when the cloud cannot be read. freeform: the smooth
+// regions left unassigned become bspline_surface primitives (fit/splines/freeform_detection.h,
+// after the primitives in the scene; report "freeform": {...}).
+CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options,
+                               bool freeform = false);
 
 // "plane,cylinder" -> kinds; InputError naming the unknown kind.
 std::vector<NodeType> DetectionKindsFromList(const std::string& list);

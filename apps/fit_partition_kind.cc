@@ -18,21 +18,7 @@ namespace implicitfit {
 namespace {
 
 // "AxBxC" with positive integers.
-void ParseGrid(const std::string& text, int cells[3]) {
-  const std::string usage = "--grid '" + text + "': expected AxBxC, three counts >= 1 (e.g. 3x3x2)";
-  size_t start = 0;
-  for (int k = 0; k < 3; ++k) {
-    const size_t x = text.find('x', start);
-    if ((k < 2) != (x != std::string::npos)) throw InputError(usage);
-    const std::string item = text.substr(start, k < 2 ? x - start : std::string::npos);
-    if (item.empty() || item.size() > 4 ||
-        item.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError(usage);
-    cells[k] = std::stoi(item);
-    if (cells[k] < 1) throw InputError(usage);
-    start = x + 1;
-  }
-}
+void ParseGrid(const std::string& text, int cells[3]) { ParseCounts(text, 3, "3x3x2", cells); }
 
 }  // namespace
 

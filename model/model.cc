@@ -74,6 +74,11 @@ std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
       field.size *= -node.count;  // per element
   if (const int features = SkeletonFeatureCount(node))
     fields.push_back({"features", ColemanFeatures::kPerFeature * features});
+  if (!node.curve_vertices.empty()) {
+    int size = 0;
+    for (int n : node.curve_vertices) size += 3 * n + 4;
+    fields.push_back({"curve_features", size});
+  }
   return fields;
 }
 
@@ -238,6 +243,35 @@ int Model::AddColemanFeatures(int core, double core_radius, const std::vector<do
   node.children = {core};
   std::vector<double> p = {core_radius};
   p.insert(p.end(), features.begin(), features.end());
+  const int index = AddNode(std::move(node), p);
+  root_ = index;
+  return index;
+}
+
+int Model::AddColemanCurveFeatures(int core, double core_radius,
+                                   const std::vector<double>& features,
+                                   const std::vector<std::vector<double>>& curves,
+                                   std::string name) {
+  if (curves.empty()) return AddColemanFeatures(core, core_radius, features, std::move(name));
+  const size_t m = features.size() / ColemanFeatures::kPerFeature;
+  if (features.size() != m * ColemanFeatures::kPerFeature)
+    throw std::invalid_argument("AddColemanCurveFeatures: 7 numbers per point feature");
+  if (!(core_radius > 0.0)) throw std::invalid_argument("AddColemanCurveFeatures: core radius > 0");
+  if (core < 0 || core >= static_cast<int>(nodes_.size()))
+    throw std::invalid_argument("AddColemanCurveFeatures: core index out of range");
+  ModelNode node;
+  node.type = NodeType::kColemanFeatures;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.children = {core};
+  std::vector<double> p = {core_radius};
+  p.insert(p.end(), features.begin(), features.end());
+  for (const std::vector<double>& c : curves) {
+    if (c.size() < 7 || (c.size() - 4) % 3 != 0)
+      throw std::invalid_argument("AddColemanCurveFeatures: 3 n + 4 numbers per curve feature");
+    node.curve_vertices.push_back(static_cast<int>((c.size() - 4) / 3));
+    p.insert(p.end(), c.begin(), c.end());
+  }
   const int index = AddNode(std::move(node), p);
   root_ = index;
   return index;

@@ -21,6 +21,7 @@
 #include "model/bernstein/bernstein_patch.h"
 #include "model/primitives/blobs.h"
 #include "model/primitives/box.h"
+#include "model/primitives/coleman_curve_features.h"
 #include "model/primitives/coleman_features.h"
 #include "model/primitives/cone.h"
 #include "model/blends/convex_smooth_ops.h"
@@ -125,6 +126,7 @@ struct ModelNode {
   BernsteinGrid grid;                     // bernstein_mesh: the Kuhn grid
   int continuity = 0;                     // bernstein_mesh: declared continuity, 0 or 1
   SplineStructure spline;  // bspline_surface, bspline_volume, curve skeletons: degrees, knots, ...
+  std::vector<int> curve_vertices;  // coleman_features: the vertex count of each curve feature
 };
 
 // One fold step of a union / intersection / difference node: op(a, b) with the node's
@@ -205,6 +207,11 @@ class Model {
   // flare), m >= 1. Throws std::invalid_argument otherwise.
   int AddColemanFeatures(int core, double core_radius, const std::vector<double>& features,
                          std::string name = "");
+  // The same with curve features (model/primitives/coleman_curve_features.h): each entry of
+  // `curves` is [3 n vertices (n >= 1), W, D, R, flare]; point features may then be empty.
+  int AddColemanCurveFeatures(int core, double core_radius, const std::vector<double>& features,
+                              const std::vector<std::vector<double>>& curves,
+                              std::string name = "");
   int AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
                        const std::vector<double>& control_points, std::string name = "");
   // A B-spline / NURBS surface (model/splines/bspline_surface_distance.h): its structure
@@ -318,9 +325,13 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
           [&](int j) { return EvaluateNode(node.children[j], params, x); },
           [&](int j) { return EvaluateNode(node.children[m + j], params, x); });
     }
-    case NodeType::kColemanFeatures:
-      return ColemanFeatures::Evaluate(
-          node.count, p, x, [&](const T* y) { return EvaluateNode(node.children[0], params, y); });
+    case NodeType::kColemanFeatures: {
+      auto core = [&](const T* y) { return EvaluateNode(node.children[0], params, y); };
+      const T f = ColemanFeatures::Evaluate(node.count, p, x, core);
+      if (node.curve_vertices.empty()) return f;
+      return ColemanCurveFeatures::Evaluate(
+          node.curve_vertices, p[0], p + 1 + ColemanFeatures::kPerFeature * node.count, x, f, core);
+    }
     case NodeType::kBlobs:
       return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order, node.count,
                                       p, x);

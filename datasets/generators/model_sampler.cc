@@ -129,6 +129,11 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
         const double* e = p + 1 + ColemanFeatures::kPerFeature * q;
         reach = std::max(reach, p[0] + e[4] + e[3] + e[5]);
       }
+      const double* c = p + 1 + ColemanFeatures::kPerFeature * node.count;
+      for (int n : node.curve_vertices) {  // curve features: [3 n vertices, W, D, R, flare]
+        reach = std::max(reach, p[0] + c[3 * n + 1] + c[3 * n] + c[3 * n + 2]);
+        c += 3 * n + 4;
+      }
       *lo -= Vec::Constant(1.05 * reach);
       *hi += Vec::Constant(1.05 * reach);
       return;

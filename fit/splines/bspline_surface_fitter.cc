@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <thread>
 
 #include "fit/common/thread_count.h"
 #include "fit/splines/parameter_frame.h"
@@ -28,17 +27,6 @@ SplineStructure Structure(const SurfaceFitOptions& o) {
   s.knots[0] = ClampedUniformKnots(o.degree, o.count_u, 0.0, 1.0);
   s.knots[1] = ClampedUniformKnots(o.degree, o.count_v, 0.0, 1.0);
   return s;
-}
-
-// Runs body(begin, end) over [0, n) in `threads` contiguous chunks.
-template <typename Body>
-void ParallelFor(size_t n, int threads, const Body& body) {
-  const size_t chunks = std::max<size_t>(1, std::min<size_t>(threads, n / 256 + 1));
-  std::vector<std::thread> pool;
-  for (size_t c = 1; c < chunks; ++c)
-    pool.emplace_back([&, c] { body(n * c / chunks, n * (c + 1) / chunks); });
-  body(0, n / chunks);
-  for (std::thread& t : pool) t.join();
 }
 
 // The normal equations of the data and smoothing terms in banded form: entry (a, b) of the

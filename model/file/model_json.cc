@@ -496,12 +496,18 @@ int ReadColemanFeatures(const json& node, const std::string& path, int depth,
                         const std::string& name, Model* model) {
   const double core_radius = Number(node, "core_radius", path);
   RequirePositive(core_radius, path + ".core_radius");
-  const std::vector<double> features = ReadFeatureList(node, path);
+  // Point features may be absent when there are curve features (model/file/spline_json.h).
+  const bool curves = node.contains("curve_features");
+  const std::vector<double> features =
+      curves && !node.contains("features") ? std::vector<double>{} : ReadFeatureList(node, path);
+  const std::vector<std::vector<double>> curve_features =
+      curves ? ReadCurveFeatures(node.at("curve_features"), path + ".curve_features")
+             : std::vector<std::vector<double>>{};
   if (!node.contains("children") || !node.at("children").is_array() ||
       node.at("children").size() != 1)
     Fail(path + ".children", "must hold exactly 1 node: the core (a signed distance)");
   const int core = ReadNode(node.at("children")[0], path + ".children[0]", depth + 1, model);
-  return model->AddColemanFeatures(core, core_radius, features, name);
+  return model->AddColemanCurveFeatures(core, core_radius, features, curve_features, name);
 }
 
 std::set<std::string> AllowedKeys(NodeType type) {
@@ -517,7 +523,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
   if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
   if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
-  if (type == NodeType::kColemanFeatures) keys.insert("children");
+  if (type == NodeType::kColemanFeatures) keys.insert({"children", "curve_features"});
   if (type == NodeType::kSkeletonOffset) keys.insert("features");  // docs/maths.md CO-2
   if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
   if (type == NodeType::kBSplineSurface) keys.insert({"degree", "knots_u", "knots_v", "weights"});
@@ -560,6 +566,8 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
       bool known = false;
       for (const ParameterField& pf : ParameterFieldsOf(type)) known |= field == pf.name;
       known |= type == NodeType::kSkeletonOffset && field == "features" && node.contains(field);
+      known |= type == NodeType::kColemanFeatures && field == "curve_features" &&
+               node.contains(field);
       if (!known) Fail(where, "'" + field + "' is not a parameter of a " + type_name);
       fixed.push_back(field);
     }
@@ -664,7 +672,9 @@ json WriteNode(const Model& model, int index) {
   } else if (node.type == NodeType::kColemanFeatures) {
     const int b = node.first_parameter;
     out["core_radius"] = p[b];
-    out["features"] = WriteFeatureList(p, b + 1, node.count);
+    if (node.count > 0 || node.curve_vertices.empty())
+      out["features"] = WriteFeatureList(p, b + 1, node.count);
+    if (!node.curve_vertices.empty()) out["curve_features"] = WriteCurveFeatures(model, node);
     out["children"] = json::array({WriteNode(model, node.children[0])});
   } else if (node.type == NodeType::kPartitionSequence) {
     json separators = json::array(), children = json::array();

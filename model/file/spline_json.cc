@@ -307,4 +307,42 @@ json WriteCurveSkeleton(const Model& model, const ModelNode& node) {
   return json{{"curve", {{"helix", curve}}}};
 }
 
+std::vector<std::vector<double>> ReadCurveFeatures(const json& list, const std::string& where) {
+  if (!list.is_array() || list.empty() || list.size() > 4096)
+    Refuse(where, "must be an array of 1..4096 curve features");
+  std::vector<std::vector<double>> out;
+  for (size_t f = 0; f < list.size(); ++f) {
+    const std::string at = where + "[" + std::to_string(f) + "]";
+    CheckKeysOf(list[f], {"curve", "width", "depth", "radius", "flare"}, at);
+    std::vector<double> c = Points(Field(list[f], "curve", at), at + ".curve", 1, 4096);
+    const double w = Finite(Field(list[f], "width", at), at + ".width");
+    const double d = Finite(Field(list[f], "depth", at), at + ".depth");
+    const double r = Finite(Field(list[f], "radius", at), at + ".radius");
+    const double flare = Finite(Field(list[f], "flare", at), at + ".flare");
+    if (!(w > 0)) Refuse(at + ".width", "must be > 0");
+    if (!(r > 0)) Refuse(at + ".radius", "must be > 0");
+    if (d < 0) Refuse(at + ".depth", "must be >= 0");
+    if (flare < 0 || flare > 1) Refuse(at + ".flare", "must be in [0, 1]");
+    c.insert(c.end(), {w, d, r, flare});
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+json WriteCurveFeatures(const Model& model, const ModelNode& node) {
+  const std::vector<double>& p = model.parameters();
+  size_t q = node.first_parameter + 1 + ColemanFeatures::kPerFeature * node.count;
+  json list = json::array();
+  for (int n : node.curve_vertices) {
+    const size_t e = q + 3 * n;
+    list.push_back({{"curve", PointList(p, q, n)},
+                    {"width", p[e]},
+                    {"depth", p[e + 1]},
+                    {"radius", p[e + 2]},
+                    {"flare", p[e + 3]}});
+    q = e + 4;
+  }
+  return list;
+}
+
 }  // namespace implicitfit

@@ -38,4 +38,11 @@ int ReadCurveSkeletonOffset(const nlohmann::json& curve, const std::string& wher
 // {"curve": {...}} of a curve skeleton node.
 nlohmann::json WriteCurveSkeleton(const Model& model, const ModelNode& node);
 
+// coleman_features' "curve_features": [{"curve": [[3], ...] (1..4096 points), "width": W,
+// "depth": D, "radius": R, "flare": phi}, ...] (model/primitives/coleman_curve_features.h; W, R > 0,
+// D >= 0, phi in [0, 1]): each as [3 n vertices, W, D, R, phi].
+std::vector<std::vector<double>> ReadCurveFeatures(const nlohmann::json& list,
+                                                   const std::string& where);
+nlohmann::json WriteCurveFeatures(const Model& model, const ModelNode& node);
+
 }  // namespace implicitfit
