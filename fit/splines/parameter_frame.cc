@@ -1,6 +1,7 @@
 #include "fit/splines/parameter_frame.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

@@ -56,6 +56,47 @@ int NearestControlPoints(const double* points, int count, const double* x, int* 
   return b.found;
 }
 
+// The same on an n_u x n_v net, in two levels when it is large (bounded work per evaluation):
+// every step-th point (at most 32 x 32), then the windows of +- step around the three best.
+int NearestNetPoints(const double* points, int nu, int nv, const double* x, int* best) {
+  if (nu * nv <= 1024) return NearestControlPoints(points, nu * nv, x, best);
+  const int su = (nu + 31) / 32, sv = (nv + 31) / 32;
+  BestStarts coarse;
+  for (int i = 0; i < nu; i += su)
+    for (int j = 0; j < nv; j += sv) coarse.Offer(Distance2(points + 3 * (i * nv + j), x), i * nv + j);
+  BestStarts fine;
+  for (int k = 0; k < coarse.found; ++k) {
+    const int ci = static_cast<int>(coarse.value[k]) / nv, cj = static_cast<int>(coarse.value[k]) % nv;
+    for (int i = std::max(0, ci - su); i <= std::min(nu - 1, ci + su); ++i)
+      for (int j = std::max(0, cj - sv); j <= std::min(nv - 1, cj + sv); ++j) {
+        bool seen = false;
+        for (int f = 0; f < fine.found; ++f) seen |= static_cast<int>(fine.value[f]) == i * nv + j;
+        if (!seen) fine.Offer(Distance2(points + 3 * (i * nv + j), x), i * nv + j);
+      }
+  }
+  for (int k = 0; k < fine.found; ++k) best[k] = static_cast<int>(fine.value[k]);
+  return fine.found;
+}
+
+// A curve's control polygon, in two levels when it holds more than 256 points.
+int NearestPolygonPoints(const double* points, int n, const double* x, int* best) {
+  if (n <= 256) return NearestControlPoints(points, n, x, best);
+  const int step = (n + 63) / 64;
+  BestStarts coarse;
+  for (int i = 0; i < n; i += step) coarse.Offer(Distance2(points + 3 * i, x), i);
+  BestStarts fine;
+  for (int k = 0; k < coarse.found; ++k) {
+    const int c = static_cast<int>(coarse.value[k]);
+    for (int i = std::max(0, c - step); i <= std::min(n - 1, c + step); ++i) {
+      bool seen = false;
+      for (int f = 0; f < fine.found; ++f) seen |= static_cast<int>(fine.value[f]) == i;
+      if (!seen) fine.Offer(Distance2(points + 3 * i, x), i);
+    }
+  }
+  for (int k = 0; k < fine.found; ++k) best[k] = static_cast<int>(fine.value[k]);
+  return fine.found;
+}
+
 struct SurfaceState {
   double u, v, D;
   double S[kMaxSplineDerivative + 1][kMaxSplineDerivative + 1][3];
@@ -207,9 +248,9 @@ CurveFoot CurveNewton(const SplineStructure& s, const double* points, const doub
 }
 
 // Starts for an ellipse or a helix: the three best of a sampling at 16 points per turn (at most
-// kMaxCurveSamples in all; beyond, the samples thin out), which holds the global minimum's basin
+// 1024 samples: beyond 64 turns they thin out), which holds the global minimum's basin
 // for any x (one local minimum per turn at most, for a point far from the axis).
-constexpr int kMaxCurveSamples = 4096;
+constexpr int kMaxCurveSamples = 1024;
 
 int PeriodicStarts(const SplineStructure& s, const double* p, const double* x, double* starts) {
   const double range = s.curve == CurveKind::kHelix ? s.turns : 1.0;
@@ -237,7 +278,7 @@ SurfaceFoot ClosestSurfacePoint(const SplineStructure& s, const double* points, 
                                 const double* start) {
   int nearest[kStarts];
   const int nv = s.count[1];
-  const int found = NearestControlPoints(points, s.count[0] * nv, x, nearest);
+  const int found = NearestNetPoints(points, s.count[0], nv, x, nearest);
   SurfaceFoot best;
   bool first = true;
   if (start) {
@@ -258,7 +299,7 @@ CurveFoot ClosestCurvePoint(const SplineStructure& s, const double* points, cons
   int n = 0;
   if (s.curve == CurveKind::kBSpline) {
     int nearest[kStarts];
-    const int found = NearestControlPoints(points, s.count[0], x, nearest);
+    const int found = NearestPolygonPoints(points, s.count[0], x, nearest);
     for (int k = 0; k < found; ++k) starts[n++] = Greville(s, 0, nearest[k]);
     starts[n++] = s.Begin(0);
     starts[n++] = s.End(0);

@@ -167,7 +167,8 @@ void ParametricPatch::Derivatives(const T& u, const T& v, T out[3][3]) const {
     }
     case PatchKind::kBSpline: {
       thread_local std::vector<T> control;
-      control.assign(p.begin(), p.end());
+      control.resize(p.size());
+      for (size_t i = 0; i < p.size(); ++i) control[i] = T(p[i]);
       T d[kMaxSplineDerivative + 1][kMaxSplineDerivative + 1][3];
       SurfaceDerivatives(spline, control.data(), u, v, 1, d);
       for (int k = 0; k < 3; ++k) {

@@ -4,6 +4,8 @@
 // points is close to sigma, S_u x S_v follows the normals, and bad options fail with a reason.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <random>
 
