@@ -21,6 +21,29 @@ Vec Project(const Model& model, Vec x) {
   return x;
 }
 
+// The foot of g on the last step, taken on the surface: x(s) = Project(p + s t), s in [0, h], where
+// (g - x(s)) . T(x(s)) changes sign (T: t projected into the tangent plane at x(s)); bisection.
+// At s = 0 the product is |d| > 0 (t is the tangent component of g - p); at s = h it is < 0 or the
+// step's end is kept.
+Vec EndOnStep(const Model& model, const Vec& p, const Vec& t, double h, const Vec& g) {
+  const auto side = [&](double s, Vec* x) {
+    *x = Project(model, p + s * t);
+    const Vec n = model.Gradient(*x).normalized();
+    Vec tx = t;
+    if (n.allFinite()) tx -= tx.dot(n) * n;
+    return (g - *x).dot(tx);
+  };
+  Vec x;
+  double lo = 0.0, hi = h;
+  if (side(hi, &x) >= 0.0) return x;
+  for (int it = 0; it < 60 && hi - lo > 1e-15 * h; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (side(mid, &x) > 0.0 ? lo : hi) = mid;
+  }
+  side(0.5 * (lo + hi), &x);
+  return x;
+}
+
 }  // namespace
 
 SurfaceCord GrowSurfaceCord(const Model& model, const std::vector<Vec>& guide,
@@ -55,8 +78,7 @@ SurfaceCord GrowSurfaceCord(const Model& model, const std::vector<Vec>& guide,
         cord.points.push_back(next);
         continue;
       }
-      const Vec e = (next - p).normalized();
-      cord.points.push_back(Project(model, p + (guide[target] - p).dot(e) * e));
+      cord.points.push_back(EndOnStep(model, p, d.normalized(), h, guide[target]));
       cord.reached = true;
       break;
     }

@@ -9,9 +9,12 @@
 //   about h bends to the surface);
 //   a target is passed when (g_k - p_{i+1}) . (p_{i+1} - p_i) < 0 (the step went beyond the foot of
 //   g_k on it): for an inner target the cord goes on toward g_{k+1}; at the last one growth stops
-//   and the partial segment ends at p_i + ((g_n - p_i) . e) e, e = (p_{i+1} - p_i) / |p_{i+1} - p_i|
-//   (the foot of g_n on that step, projected onto the surface: the paper adds a scalar to a point
-//   there, this is the meant form), which moves continuously with the guide.
+//   and the cord ends at the foot of g_n on that step taken on the surface: the point
+//   x(s) = proj(p_i + s d/|d|), 0 <= s <= h, where g_n - x(s) is normal to the cord's direction
+//   in the tangent plane (bisection on s). The paper's chord foot p_i + ((g_n - p_i) . e) e,
+//   e = (p_{i+1} - p_i)/|p_{i+1} - p_i|, lies behind p_i when g_n is well off the surface (the
+//   chord turns toward the surface), so the cord would fold back; the surface foot does not, and
+//   on a sphere it is the projection of g_n itself.
 // The paper's termination test reads (g_n - p_i) . (p_{i+1} - p_i) < 0; with the foot formula that
 // follows it, the test on p_{i+1} is the one under which the partial segment lies on the step.
 #pragma once

@@ -3,11 +3,15 @@
 // bspline-volume (with --convex, certified by check); bad options exit 2 with no file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <cstring>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "support/run_command.h"
 
@@ -160,6 +164,74 @@ TEST(SplineCli, FitsWriteModelsOrExitWithTheReason) {
                  "--convex --out " + dir + "/bad.json");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_FALSE(FileExists(dir + "/bad.json"));
+}
+
+// detect --freeform on a plane beside a curved sheet (x y z nx ny nz, noise 0.001 along the
+// normals; the sheet's curvature is nowhere zero, so that planes of --min-points 60 cover little
+// of it): the plane is a plane primitive; the sheet's points that no plane takes become
+// B-spline surfaces in the scene, the labels and the segmented PLY; none of the plane's.
+TEST(SplineCli, DetectFreeformAssignsTheSheet) {
+  const std::string dir = ScratchDir("spline_detect");
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.001);
+  std::ostringstream cloud;
+  cloud.precision(10);
+  const int plane_points = 2500, sheet_points = 3500;
+  for (int i = 0; i < plane_points; ++i)
+    cloud << u(rng) << " " << u(rng) << " " << noise(rng) << " 0 0 1\n";
+  for (int i = 0; i < sheet_points; ++i) {  // z = 0.8 - a^2 / 2 - 0.3 y^2 + a^3 / 20, a = x - 3
+    const double a = u(rng), y = u(rng);
+    double n[3] = {a - 0.15 * a * a, 0.6 * y, 1};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + 1);
+    for (double& c : n) c /= len;
+    const double e = noise(rng), z = 0.8 - 0.5 * a * a - 0.3 * y * y + 0.05 * a * a * a;
+    cloud << 3 + a + e * n[0] << " " << y + e * n[1] << " " << z + e * n[2] << " " << n[0] << " "
+          << n[1] << " " << n[2] << "\n";
+  }
+  WriteText(dir + "/scene.xyz", cloud.str());
+  const std::string base =
+      kCli + " detect " + dir + "/scene.xyz --kinds plane --min-points 60 --threads 2";
+  auto r = RunCommand(base + " --out " + dir + "/plain.json --labels " + dir + "/plain.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = RunCommand(base + " --freeform --out " + dir + "/free.json --labels " + dir +
+                 "/free.txt --ply " + dir + "/free.ply --report " + dir + "/free.report.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json scene = nlohmann::json::parse(Slurp(dir + "/free.json"));
+  std::vector<bool> spline;
+  for (const auto& p : scene.at("primitives")) {
+    const std::string dump = p.dump();
+    spline.push_back(dump.find("bspline_surface") != std::string::npos);
+  }
+  ASSERT_GE(std::count(spline.begin(), spline.end(), true), 1) << scene.dump();
+  const auto labels = [&](const std::string& path) {
+    std::vector<int> l;
+    std::istringstream in(Slurp(path));
+    for (int x; in >> x;) l.push_back(x);
+    return l;
+  };
+  const std::vector<int> plain = labels(dir + "/plain.txt"), free = labels(dir + "/free.txt");
+  ASSERT_EQ(free.size(), static_cast<size_t>(plane_points + sheet_points));
+  ASSERT_EQ(plain.size(), free.size());
+  int sheet_left = 0, sheet_spline = 0, plane_spline = 0;
+  for (int i = 0; i < plane_points + sheet_points; ++i) {
+    const bool is_spline = free[i] >= 0 && spline.at(free[i]);
+    if (!is_spline) EXPECT_EQ(free[i], plain[i]) << i;  // the primitives are the same
+    if (is_spline) EXPECT_EQ(plain[i], -1) << i;       // splines take only what was left
+    if (i < plane_points) {
+      plane_spline += is_spline;
+    } else {
+      sheet_left += plain[i] < 0;
+      sheet_spline += is_spline;
+    }
+  }
+  EXPECT_EQ(plane_spline, 0);
+  EXPECT_GE(sheet_spline, 0.5 * sheet_left) << sheet_left;
+  const nlohmann::json report = nlohmann::json::parse(Slurp(dir + "/free.report.json"));
+  EXPECT_EQ(report.at("freeform").at("points").get<int>(), sheet_spline);
+  const std::string ply = Slurp(dir + "/free.ply");
+  EXPECT_NE(ply.find("property int label"), std::string::npos);
+  EXPECT_NE(ply.find("residual"), std::string::npos);
 }
 
 }  // namespace
