@@ -1,15 +1,23 @@
 """Helpers of the browser tests (tests/view/): headless Chromium driven directly (not through the
-code under test), a PNG decoder (zlib + the five PNG row filters, RFC 2083), pixel counts.
+code under test) by Selenium's ChromeDriver, a PNG decoder (zlib + the five PNG row filters,
+RFC 2083), pixel counts.
 
-Chromium's flags are the ones that work here as root with no GPU: WebGL through SwiftShader."""
+One browser serves every screenshot of a test process (started at the first, closed at exit):
+launching Chromium once per picture cost 7-13 s each on the loaded 2-core machine, a page in the
+running browser about 2 s. Chromium's flags are the ones that work here as root with no GPU:
+WebGL through SwiftShader."""
+import atexit
 import os
 import shutil
 import struct
-import subprocess
-import tempfile
 import zlib
 from collections import Counter
 from pathlib import Path
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+         "--use-angle=swiftshader", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--no-first-run", "--hide-scrollbars",
+         "--force-device-scale-factor=1"]
 
 
 def chromium():
@@ -24,24 +32,52 @@ def chromium():
     return None
 
 
+def missing():
+    """Why the browser tests cannot run here (None when they can)."""
+    if chromium() is None:
+        return "Chromium is not installed (apt-get install chromium)"
+    if shutil.which("chromedriver") is None:
+        return "ChromeDriver is not installed (apt-get install chromium-driver)"
+    try:
+        import selenium  # noqa: F401
+    except ImportError:
+        return "Selenium is not installed (apt-get install python3-selenium)"
+    return None
+
+
+_driver = None
+
+
+def _browser():
+    global _driver
+    if _driver is None:
+        from selenium import webdriver
+        from selenium.webdriver.chrome.service import Service
+        options = webdriver.ChromeOptions()
+        options.binary_location = chromium()
+        for flag in FLAGS:
+            options.add_argument(flag)
+        options.set_capability("goog:loggingPrefs", {"browser": "ALL"})  # the page's console
+        _driver = webdriver.Chrome(service=Service(shutil.which("chromedriver")),
+                                   options=options)
+        _driver.set_page_load_timeout(120)
+        atexit.register(_driver.quit)
+    return _driver
+
+
 def screenshot(page, png, width=400, height=300, fragment=""):
-    """Draws the page (a file) in headless Chromium into png; returns the PNG path. Fails when
-    the page's script throws (an uncaught error in Chromium's console log)."""
-    binary = chromium()
-    assert binary, "Chromium is not installed"
+    """Draws the page (a file) into png at width x height CSS pixels; returns the PNG path.
+    Fails when the page's script throws (an uncaught error in the console)."""
+    driver = _browser()
     url = Path(page).resolve().as_uri() + ("#" + fragment if fragment else "")
-    with tempfile.TemporaryDirectory(prefix="implicitfit-test-chromium-") as profile:
-        r = subprocess.run(
-            [binary, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-             "--use-angle=swiftshader", "--disable-background-networking",
-             "--disable-component-update", "--disable-sync", "--no-first-run",
-             "--hide-scrollbars", "--force-device-scale-factor=1",
-             "--enable-logging=stderr", "--v=0",  # the page's console, for errors
-             f"--user-data-dir={profile}", f"--screenshot={png}",
-             f"--window-size={width},{height}", url],
-            capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
-    assert r.returncode == 0 and Path(png).exists(), r.stderr[-2000:]
-    errors = [line for line in r.stderr.splitlines() if "CONSOLE" in line and "Uncaught" in line]
+    driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                           {"width": width, "height": height, "deviceScaleFactor": 1,
+                            "mobile": False})
+    driver.get("about:blank")  # a new fragment alone would not reload the page
+    driver.get(url)  # returns after the load event: the viewer draws synchronously on load
+    Path(png).write_bytes(driver.get_screenshot_as_png())
+    errors = [e["message"] for e in driver.get_log("browser")
+              if e["level"] == "SEVERE" and "Uncaught" in e["message"]]
     assert not errors, f"{page}#{fragment}: {errors}"
     return png
 

@@ -17,8 +17,8 @@ import pytest
 
 import browser
 
-pytestmark = pytest.mark.skipif(browser.chromium() is None,
-                                reason="Chromium is not installed (apt-get install chromium)")
+pytestmark = pytest.mark.skipif(browser.missing() is not None,
+                                reason=str(browser.missing()))
 
 W, H = 400, 300
 BACKGROUND = (255, 255, 255)

@@ -23,8 +23,8 @@ W, H = 400, 300
 BACKGROUND = (255, 255, 255)
 INSIDE = (0xd0, 0x3a, 0x2f)  # the documented colour of a surface's inside (docs/view.md)
 
-pytestmark = pytest.mark.skipif(browser.chromium() is None,
-                                reason="Chromium is not installed (apt-get install chromium)")
+pytestmark = pytest.mark.skipif(browser.missing() is not None,
+                                reason=str(browser.missing()))
 
 
 def need(path):
