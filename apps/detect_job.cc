@@ -59,7 +59,13 @@ void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& optio
   d->report["freeform"] = {{"surfaces", f.surfaces.size()}, {"points", assigned},
                            {"regions", f.regions},          {"region_points", f.region_points},
                            {"fits", f.fits},                {"splits", f.splits},
-                           {"seconds", f.seconds}};
+                           {"seconds", f.seconds},
+                           {"rejected", {{"folded", f.folded}, {"no_grid", f.no_grid},
+                                         {"small_support", f.small_support},
+                                         {"rms_over_2_sigma", f.rms_over},
+                                         {"small_parts", f.small_parts},
+                                         {"small_part_points", f.small_part_points},
+                                         {"depth_limit", f.depth_limit}}}};
   if (!f.surfaces.empty()) d->report["kinds"]["bspline_surface"] = f.surfaces.size();
 }
 

@@ -78,7 +78,11 @@ class FreeformStage {
 
   // Steps 2-4 of the header on one region.
   void Process(const std::vector<int>& region, int depth) {
-    if (static_cast<int>(region.size()) < o_.min_points) return;
+    if (static_cast<int>(region.size()) < o_.min_points) {
+      ++result_.small_parts;
+      result_.small_part_points += static_cast<int>(region.size());
+      return;
+    }
     std::vector<Vec> p, n;
     Gather(region, &p, &n);
     ParameterFrame frame;
@@ -90,17 +94,20 @@ class FreeformStage {
     int folded = 0;
     for (const Vec& x : n) folded += x.dot(frame.normal) < std::cos(80.0 * M_PI / 180.0);
     if (folded > 0.02 * n.size()) {
+      ++result_.folded;
       Split(region, p, depth);
       return;
     }
     const Candidate best = BestGrid(p, n, frame);
     if (!best.ok) {
+      ++result_.no_grid;
       Split(region, p, depth);
       return;
     }
     // Support, refit on it, support again (step 4).
     std::vector<int> support = Support(region, best.fit.ToModel());
     if (static_cast<int>(support.size()) < o_.min_points) {
+      ++result_.small_support;
       Split(region, p, depth);
       return;
     }
@@ -124,6 +131,7 @@ class FreeformStage {
     }
     const double rms = support.empty() ? INFINITY : std::sqrt(sum / support.size());
     if (static_cast<int>(support.size()) < o_.min_points || rms > 2.0 * o_.noise) {
+      ++(rms > 2.0 * o_.noise ? result_.rms_over : result_.small_support);
       Split(region, p, depth);
       return;
     }
@@ -186,7 +194,7 @@ class FreeformStage {
     for (int nu : {4, 6, 8, 12, 16}) {
       nu = std::max(nu, o_.degree + 1);
       const int nv = std::max(o_.degree + 1, static_cast<int>(std::lround(nu * aspect)));
-      if (n_points < 10.0 * nu * nv) break;
+      if (n_points < 5.0 * nu * nv) break;
       const SurfaceFitResult fit = FitBSplineSurface(p, n, FitOptions(nu, nv, false));
       ++result_.fits;
       if (!fit.success) continue;
@@ -226,7 +234,10 @@ class FreeformStage {
 
   // Step 2's split at the median of the longest principal axis; each half's smooth parts.
   void Split(const std::vector<int>& region, const std::vector<Vec>& p, int depth) {
-    if (depth >= o_.max_depth) return;
+    if (depth >= o_.max_depth) {
+      ++result_.depth_limit;
+      return;
+    }
     ++result_.splits;
     Vec c = Vec::Zero();
     for (const Vec& x : p) c += x;

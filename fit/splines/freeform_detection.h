@@ -10,10 +10,11 @@
 //      connected part taken again (at most max_depth splits deep).
 //   3. Fit and kind by penalised likelihood, as for the primitives: for each grid in
 //      {4, 6, 8, 12, 16} control points along the longer side (the other side in proportion, at
-//      least degree + 1; only grids with >= 10 points per control point), the patch's cost on the
-//      region is C = sum_i min(r_i^2 / s^2, tau^2 / s^2) + p ln n, p = 3 n_u n_v, s = sigma
-//      clamped to [tau / 10, tau / 3] (the detector's), against the cost n tau^2 / s^2 of leaving
-//      every point unassigned; the cheapest patch wins if it beats that.
+//      least degree + 1; only grids with >= 5 points per control point: a 4 x 4 bicubic net
+//      fits a region of 80 points), the patch's cost on the region is
+//      C = sum_i min(r_i^2 / s^2, tau^2 / s^2) + p ln n, p = 3 n_u n_v, s = sigma clamped to
+//      [tau / 10, tau / 3] (the detector's), against the cost n tau^2 / s^2 of leaving every
+//      point unassigned; the cheapest patch wins if it beats that.
 //   4. Support: the region's points within the distance band tau and the normal band theta
 //      (|cos(S_u x S_v, n)| >= cos theta), cut to their largest connected part; the patch is
 //      refitted on it once. Accepted when the support holds >= min_points and its RMS distance is
@@ -55,6 +56,12 @@ struct FreeformResult {
   int regions = 0;          // smooth regions of at least min_points found in step 1
   int region_points = 0;    // the points in them
   int splits = 0, fits = 0;
+  // Why regions (or their parts) were not accepted: a fold (step 2), no grid beat leaving the
+  // points unassigned (step 3), a support under min_points or an RMS over 2 sigma (step 4), and
+  // the parts under min_points that splits left (their points stay unassigned), the parts
+  // refused at max_depth.
+  int folded = 0, no_grid = 0, small_support = 0, rms_over = 0, small_parts = 0, depth_limit = 0;
+  int small_part_points = 0;
   double seconds = 0.0;
 };
 
