@@ -49,7 +49,7 @@ Sampled HeightField(int n, double sigma, unsigned seed) {
 
 TEST(BSplineSurfaceFit, BicubicHeightFieldWithinTheNoise) {
   const double sigma = 0.002;
-  const Sampled data = HeightField(3000, sigma, 4);
+  const Sampled data = HeightField(1500, sigma, 4);
   SurfaceFitOptions o;
   o.count_u = o.count_v = 6;
   const SurfaceFitResult r = FitBSplineSurface(data.noisy, data.normals, o);
