@@ -1,12 +1,13 @@
 // implicitfit detect CLOUD --out SCENE.json [--labels LABELS.txt] [--ply SEGMENTED.ply]
 //                    [--report R.json] [--kinds plane,sphere,cylinder,cone,torus]
-//                    [--threshold t] [--min-points m] [--seed s] [--threads n]
+//                    [--threshold t] [--min-points m] [--seed s] [--threads n] [--freeform]
 //                    [--score | --truth TRUTH.txt] [--truth-kinds LIST] [--truth-none V]
 //                    [--quiet]
 // Every primitive of a multi-primitive cloud, with its points (fit/detect/primitive_detector.h);
-// --score / --truth: the result against ground-truth labels (apps/detect_job.h). Progress on
-// stderr unless --quiet. Exit 0 with at least one primitive, 1 when none is found (no scene
-// written), 2 for invalid usage or input.
+// --freeform: the smooth remainder as B-spline surfaces (docs/splines.md); --score / --truth: the
+// result against ground-truth labels (apps/detect_job.h). Progress on stderr unless --quiet.
+// Exit 0 with at least one primitive, 1 when none is found (no scene written), 2 for invalid
+// usage or input.
 #include <cstdio>
 #include <iostream>
 
@@ -26,6 +27,7 @@ struct DetectArgs {
   unsigned seed = 1;
   bool score = false, quiet = false;
   TruthRequest truth;
+  bool freeform = false;
 };
 
 }  // namespace
@@ -67,6 +69,8 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--truth-none", a->truth.none,
                   "A label value that means 'on no primitive' (besides negative values)");
   cmd->add_flag("--quiet", a->quiet, "No progress on stderr");
+  cmd->add_flag("--freeform", a->freeform,
+                "Smooth regions no primitive explains become B-spline surfaces (docs/detect.md)");
   return [a]() {
     DetectionOptions options;
     options.kinds = DetectionKindsFromList(a->kinds);
@@ -82,7 +86,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
     if (!scoring && (!a->truth.kinds.empty() || a->truth.none != -1))
       throw InputError("--truth-kinds and --truth-none apply with --score or --truth");
     if (!a->truth.file.empty()) ReadTruthFile(a->truth.file);  // a bad file fails before the work
-    CloudDetection d = DetectCloudFile(a->cloud, options);
+    CloudDetection d = DetectCloudFile(a->cloud, options, a->freeform);
     // The truth is read (and refused) before anything is written.
     if (scoring && !d.degenerate) {
       const TruthLabels truth = LoadTruth(d, a->truth);

@@ -12,6 +12,7 @@
 #include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/oriented_cloud.h"
 #include "fit/primitive/primitive_fitter.h"
+#include "fit/splines/freeform_detection.h"
 
 namespace implicitfit {
 namespace {
@@ -64,13 +65,53 @@ std::vector<NodeType> DetectionKindsFromList(const std::string& list) {
 
 namespace {
 
+// detect --freeform: the smooth remainder as bspline_surface primitives, appended to the scene.
+void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& options,
+                         CloudDetection* d) {
+  DetectionResult& r = d->result;
+  FreeformOptions fo;
+  fo.noise = r.noise > 0 ? r.noise : 0.1 * r.threshold;
+  fo.threshold = r.threshold;
+  fo.normal_angle_deg = r.normal_angle_deg;
+  fo.min_points = std::max(r.min_points, 1);
+  fo.num_threads = options.num_threads;
+  const FreeformResult f =
+      DetectFreeformSurfaces(d->cloud.points, d->cloud.normals, nb.indices, fo,
+                             static_cast<int>(d->scene.primitives.size()), &r.labels, &r.residuals);
+  int assigned = 0;
+  for (const FreeformSurface& s : f.surfaces) {
+    ScenePrimitive p;
+    p.name = "p" + std::to_string(d->scene.primitives.size());
+    p.model = s.model;
+    p.points = static_cast<int>(s.points.size());
+    p.rms_distance = s.rms_distance;
+    p.normal_side = s.normal_side;
+    d->scene.primitives.push_back(std::move(p));
+    assigned += static_cast<int>(s.points.size());
+  }
+  d->scene.unassigned -= assigned;
+  d->report["unassigned"] = d->scene.unassigned;
+  d->report["primitives"] = d->scene.primitives.size();
+  d->report["freeform"] = {{"surfaces", f.surfaces.size()}, {"points", assigned},
+                           {"regions", f.regions},          {"region_points", f.region_points},
+                           {"fits", f.fits},                {"splits", f.splits},
+                           {"seconds", f.seconds},
+                           {"rejected", {{"folded", f.folded}, {"no_grid", f.no_grid},
+                                         {"small_support", f.small_support},
+                                         {"rms_over_2_sigma", f.rms_over},
+                                         {"small_parts", f.small_parts},
+                                         {"small_part_points", f.small_part_points},
+                                         {"depth_limit", f.depth_limit}}}};
+  if (!f.surfaces.empty()) d->report["kinds"]["bspline_surface"] = f.surfaces.size();
+}
+
 // The detection of a cloud already read: `nb` its neighbourhoods (computed here when empty),
 // `order` its spatial order (empty: the cloud is in the file's order), `start` when reading began.
 CloudDetection DetectPrepared(PointCloud cloud, CloudFileInfo info, Neighbourhoods nb,
                               const std::vector<size_t>& order, const std::string& path,
                               const std::string& normals_action,
                               std::chrono::steady_clock::time_point start,
-                              const DetectionOptions& options) {
+                              const DetectionOptions& options, bool freeform) {
   CloudDetection d;
   d.cloud = std::move(cloud);
   d.info = std::move(info);
@@ -95,7 +136,7 @@ CloudDetection DetectPrepared(PointCloud cloud, CloudFileInfo info, Neighbourhoo
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   Tell(options, line);
   d.result = DetectPrimitives(d.cloud.points, d.cloud.normals, nb.indices, nb.spacing, options);
-  nb = Neighbourhoods();
+  if (!freeform) nb = Neighbourhoods();
   if (!order.empty()) RestoreFileOrder(order, &d);
   const DetectionResult& r = d.result;
   std::map<std::string, int> kinds;
@@ -130,12 +171,17 @@ CloudDetection DetectPrepared(PointCloud cloud, CloudFileInfo info, Neighbourhoo
   d.report["candidates_accepted"] = r.candidates_accepted;
   d.report["merges"] = r.merges;
   d.report["seconds"] = r.seconds;
+  if (freeform) {
+    if (!order.empty()) nb = FindNeighbourhoods(d.cloud.points);  // in the file's order now
+    AddFreeformSurfaces(nb, options, &d);
+  }
   return d;
 }
 
 }  // namespace
 
-CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options) {
+CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options,
+                               bool freeform) {
   const auto start = std::chrono::steady_clock::now();
   Tell(options, "reading " + path);
   std::string normals_action;
@@ -144,13 +190,13 @@ CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& 
   std::vector<size_t> order;  // large clouds are detected in Morton order (locality)
   PointCloud cloud = ReadOrientedCloud(path, &normals_action, true, &info, &nb, &order);
   return DetectPrepared(std::move(cloud), std::move(info), std::move(nb), order, path,
-                        normals_action, start, options);
+                        normals_action, start, options, freeform);
 }
 
 CloudDetection DetectCloud(PointCloud cloud, const std::string& path,
                            const std::string& normals_action, const DetectionOptions& options) {
   return DetectPrepared(std::move(cloud), CloudFileInfo(), Neighbourhoods(), {}, path,
-                        normals_action, std::chrono::steady_clock::now(), options);
+                        normals_action, std::chrono::steady_clock::now(), options, false);
 }
 
 void WriteDetection(const CloudDetection& d, const std::string& scene_path,

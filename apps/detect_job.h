@@ -34,8 +34,11 @@ struct CloudDetection {
 };
 
 // Throws InputError (naming the file) when the cloud cannot be read. options.progress, when
-// set, is also told about the reading and the neighbourhood search.
-CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options);
+// set, is also told about the reading and the neighbourhood search. freeform: the smooth
+// regions left unassigned become bspline_surface primitives (fit/splines/freeform_detection.h,
+// after the primitives in the scene; report "freeform": {...}).
+CloudDetection DetectCloudFile(const std::string& path, const DetectionOptions& options,
+                               bool freeform = false);
 // The same on a cloud already read (oriented normals, or none: degenerate); `path` names it in
 // the scene and report, `normals_action` says where its normals came from.
 CloudDetection DetectCloud(PointCloud cloud, const std::string& path,

@@ -54,7 +54,8 @@ CommandAction AddFitCommand(CLI::App& app) {
   auto* model_opt =
       cmd->add_option("--model", a->kind,
                       "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, "
-                      "cubic-patch, box, paraboloid, capsule, patch-mesh, partition");
+                      "cubic-patch, box, paraboloid, capsule, patch-mesh, partition, "
+                      "bspline-surface, bspline-volume");
   auto* init_opt = cmd->add_option("--init", a->init,
                                    "Fit every free parameter of this model tree (primitive "
                                    "parameters, delta and epsilon, control points)");
@@ -78,12 +79,13 @@ CommandAction AddFitCommand(CLI::App& app) {
                   "robust (default: trimmed maximum likelihood), least-squares (orthogonal "
                   "distances of every point, "
                   "ISO 10360-6) or minimum-zone (smallest max |distance|, ISO 1101)");
-  cmd->add_flag("--convex", a->convex, "Constrain the Bernstein patch to be convex (certified)")
+  cmd->add_flag("--convex", a->convex,
+                "Constrain the Bernstein patch or the bspline-volume to be convex (certified)")
       ->group("Bernstein patches");
   cmd->add_option("--degree", a->degree,
                   "Patch degree (2..4; default 2 for quadric-patch, 3 for cubic-patch; patch-mesh "
-                  "2..5, default 3)")
-      ->check(CLI::Range(2, 5))
+                  "2..5, default 3; bspline-surface 1..7, bspline-volume 1..5, default 3)")
+      ->check(CLI::Range(1, 7))
       ->group("Bernstein patches");
   cmd->add_option("--tetrahedron", a->tetrahedron,
                   "Patch tetrahedron x1,y1,z1,...,x4,y4,z4 (default: encloses the cloud)")
@@ -91,8 +93,8 @@ CommandAction AddFitCommand(CLI::App& app) {
       ->expected(12)
       ->group("Bernstein patches");
   auto* cells_opt = cmd->add_option("--cells", a->cells,
-                                    "patch-mesh: cubes along the longest edge of the cloud's box "
-                                    "(default 8; 4 with --convex)")
+                                    "patch-mesh, bspline-volume: cubes along the longest edge of "
+                                    "the cloud's box (default 8; patch-mesh 4 with --convex)")
                         ->check(CLI::Range(1, 200))
                         ->group("Bernstein patches");
   cmd->add_option("--cell", a->cell, "patch-mesh: cube edge length (instead of --cells)")
@@ -104,7 +106,7 @@ CommandAction AddFitCommand(CLI::App& app) {
       ->group("Bernstein patches");
   cmd->add_option("--grid", a->grid,
                   "partition: A x B x C cells at equal spacing over the cloud's box + 5%, e.g. "
-                  "3x3x2")
+                  "3x3x2; bspline-surface: NU x NV control points, e.g. 8x6")
       ->group("Soft partitions");
   cmd->add_option("--child", a->child,
                   "partition: the child of every cell, plane (default), quadric or quadric-patch")
@@ -132,13 +134,14 @@ CommandAction AddFitCommand(CLI::App& app) {
     request.continuity = a->continuity;
     request.grid = a->grid;
     request.child = a->child;
-    if (a->kind != "partition" && !a->grid.empty())
-      throw InputError("--grid applies to --model partition");
+    if (a->kind != "partition" && a->kind != "bspline-surface" && !a->grid.empty())
+      throw InputError("--grid applies to --model partition and bspline-surface");
     if (request.HasShapeConstraints() && !IsPatchKind(a->kind))
       throw InputError(
           "--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
           "and cubic-patch");
     if (a->kind == "partition") return RunPartitionFit(request);
+    if (IsSplineKind(a->kind)) return RunSplineFit(request);
     if (IsMeshKind(a->kind)) return RunMeshFit(request);
     if (!a->init.empty()) return RunTreeFit(request);
     if (IsPatchKind(a->kind)) return RunPatchFit(request);

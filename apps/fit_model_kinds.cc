@@ -76,6 +76,23 @@ PatchShapeConstraints ShapeConstraintsFromArguments(const ModelFitRequest& reque
 
 }  // namespace
 
+void ParseCounts(const std::string& text, int n, const std::string& example, int* counts) {
+  const std::string usage = "--grid '" + text + "': expected " + std::to_string(n) +
+                            " counts >= 1 joined by x (e.g. " + example + ")";
+  size_t start = 0;
+  for (int k = 0; k < n; ++k) {
+    const size_t x = text.find('x', start);
+    if ((k < n - 1) != (x != std::string::npos)) throw InputError(usage);
+    const std::string item = text.substr(start, k < n - 1 ? x - start : std::string::npos);
+    if (item.empty() || item.size() > 4 ||
+        item.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(usage);
+    counts[k] = std::stoi(item);
+    if (counts[k] < 1) throw InputError(usage);
+    start = x + 1;
+  }
+}
+
 bool IsPatchKind(const std::string& kind) {
   return kind == "quadric-patch" || kind == "cubic-patch";
 }

@@ -6,6 +6,8 @@
 //                          a robust start (fit/tree/shape_starts.h), then the tree fitter
 //   --model partition --grid AxBxC [--child plane|quadric]
 //                          the sparse linear start (fit/tree/partition_start.h), then the tree fitter
+//   --model bspline-surface --grid NUxNV [--degree p] | bspline-volume --cells n [--convex]
+//                          the spline fits of fit/splines/
 // Each reads the cloud, fits, writes the report (when asked) and, on success, the model file;
 // returns the exit code (0 success, 1 the fit failed or the constraint cannot be met).
 #pragma once
@@ -86,6 +88,13 @@ bool IsShapeKind(const std::string& kind);
 void AddTreeFitFigures(const TreeFitResult& r, const Model& start,
                        const std::vector<Eigen::Vector3d>& points, const std::string& normals,
                        nlohmann::json* report);
+// "AxBxC" (n counts >= 1 of at most 4 digits joined by x) into counts; InputError naming --grid
+// and `example` otherwise.
+void ParseCounts(const std::string& text, int n, const std::string& example, int* counts);
+// --model bspline-surface --grid NUxNV [--degree p] and --model bspline-volume --cells n
+// [--degree k] [--convex] (apps/fit_spline_kinds.cc, fit/splines/).
+bool IsSplineKind(const std::string& kind);
+int RunSplineFit(const ModelFitRequest& request);
 // --model partition --grid AxBxC [--child plane|quadric]: the linear start of
 // fit/tree/partition_start.h, then the tree fitter (apps/fit_partition_kind.cc).
 int RunPartitionFit(const ModelFitRequest& request);

@@ -44,6 +44,8 @@ const std::vector<TypeInfo>& Types() {
          "coleman_features",
          {{"core_radius", 1, FieldRole::kPositiveLength},
           {"features", -ColemanFeatures::kPerFeature}}},
+        {NodeType::kBSplineSurface, "bspline_surface", {{"control_points", 0}}},
+        {NodeType::kBSplineVolume, "bspline_volume", {{"coefficients", 0}}},
     };
     t.insert(t.end(), others.begin(), others.end());
     return t;
@@ -72,6 +74,11 @@ std::vector<ParameterField> ParameterFieldsOf(const ModelNode& node) {
       field.size *= -node.count;  // per element
   if (const int features = SkeletonFeatureCount(node))
     fields.push_back({"features", ColemanFeatures::kPerFeature * features});
+  if (!node.curve_vertices.empty()) {
+    int size = 0;
+    for (int n : node.curve_vertices) size += 3 * n + 4;
+    fields.push_back({"curve_features", size});
+  }
   return fields;
 }
 
@@ -126,6 +133,8 @@ int Model::AddPrimitive(NodeType type, const std::vector<double>& parameters, st
     throw std::invalid_argument("AddPrimitive: use AddBlobs / AddSkeletonOffset / AddPartition");
   if (type == NodeType::kBernsteinMesh)
     throw std::invalid_argument("AddPrimitive: use AddBernsteinMesh for a bernstein_mesh");
+  if (type == NodeType::kBSplineSurface || type == NodeType::kBSplineVolume)
+    throw std::invalid_argument("AddPrimitive: use AddBSplineSurface / AddBSplineVolume");
   if (static_cast<int>(parameters.size()) != NumParametersOf(type))
     throw std::invalid_argument(std::string("AddPrimitive: ") + NodeTypeName(type) + " takes " +
                                 std::to_string(NumParametersOf(type)) + " parameters");
@@ -239,6 +248,35 @@ int Model::AddColemanFeatures(int core, double core_radius, const std::vector<do
   return index;
 }
 
+int Model::AddColemanCurveFeatures(int core, double core_radius,
+                                   const std::vector<double>& features,
+                                   const std::vector<std::vector<double>>& curves,
+                                   std::string name) {
+  if (curves.empty()) return AddColemanFeatures(core, core_radius, features, std::move(name));
+  const size_t m = features.size() / ColemanFeatures::kPerFeature;
+  if (features.size() != m * ColemanFeatures::kPerFeature)
+    throw std::invalid_argument("AddColemanCurveFeatures: 7 numbers per point feature");
+  if (!(core_radius > 0.0)) throw std::invalid_argument("AddColemanCurveFeatures: core radius > 0");
+  if (core < 0 || core >= static_cast<int>(nodes_.size()))
+    throw std::invalid_argument("AddColemanCurveFeatures: core index out of range");
+  ModelNode node;
+  node.type = NodeType::kColemanFeatures;
+  node.name = std::move(name);
+  node.count = static_cast<int>(m);
+  node.children = {core};
+  std::vector<double> p = {core_radius};
+  p.insert(p.end(), features.begin(), features.end());
+  for (const std::vector<double>& c : curves) {
+    if (c.size() < 7 || (c.size() - 4) % 3 != 0)
+      throw std::invalid_argument("AddColemanCurveFeatures: 3 n + 4 numbers per curve feature");
+    node.curve_vertices.push_back(static_cast<int>((c.size() - 4) / 3));
+    p.insert(p.end(), c.begin(), c.end());
+  }
+  const int index = AddNode(std::move(node), p);
+  root_ = index;
+  return index;
+}
+
 std::vector<SeparatorPlane> Model::SeparatorsOf(const ModelNode& node) const {
   std::vector<SeparatorPlane> out;
   for (int j = 0; j < node.count; ++j) {
@@ -299,6 +337,14 @@ int Model::AddSkeletonOffsetWithFeatures(SkeletonKind kind, const std::vector<do
   if (!(radius > 0.0))
     throw std::invalid_argument("AddSkeletonOffsetWithFeatures: core radius must be > 0");
   const int index = AddSkeletonOffset(kind, points, radius, std::move(name));
+  return AddSkeletonFeatures(index, features);
+}
+
+int Model::AddSkeletonFeatures(int index, const std::vector<double>& features) {
+  if (features.empty() || features.size() % ColemanFeatures::kPerFeature != 0 ||
+      index != static_cast<int>(nodes_.size()) - 1 ||
+      nodes_[index].type != NodeType::kSkeletonOffset)
+    throw std::invalid_argument("AddSkeletonFeatures: 7 numbers per feature, on the last node");
   parameters_.insert(parameters_.end(), features.begin(), features.end());
   nodes_[index].num_parameters += static_cast<int>(features.size());
   return index;
@@ -340,6 +386,60 @@ int Model::AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuit
   node.grid = grid;
   node.continuity = continuity;
   return AddNode(std::move(node), control_points);
+}
+
+int Model::AddBSplineSurface(const SplineStructure& structure,
+                             const std::vector<double>& control_points, std::string name) {
+  const std::string problem = SurfaceStructureProblem(structure);
+  if (!problem.empty()) throw std::invalid_argument("AddBSplineSurface: " + problem);
+  const size_t count = 3 * static_cast<size_t>(structure.count[0]) * structure.count[1];
+  if (control_points.size() != count)
+    throw std::invalid_argument("AddBSplineSurface: " + std::to_string(count / 3) +
+                                " control points take " + std::to_string(count) + " numbers");
+  ModelNode node;
+  node.type = NodeType::kBSplineSurface;
+  node.name = std::move(name);
+  node.spline = structure;
+  node.spline.count[2] = 0;
+  node.count = structure.count[0] * structure.count[1];
+  return AddNode(std::move(node), control_points);
+}
+
+int Model::AddBSplineVolume(int degree, const double box[6], const int cells[3],
+                            const std::vector<double>& coefficients, std::string name) {
+  const std::string problem = VolumeStructureProblem(degree, box, cells);
+  if (!problem.empty()) throw std::invalid_argument("AddBSplineVolume: " + problem);
+  ModelNode node;
+  node.type = NodeType::kBSplineVolume;
+  node.name = std::move(name);
+  node.spline = BSplineVolumeStructure(degree, box, cells);
+  node.degree = degree;
+  const size_t count = static_cast<size_t>(node.spline.count[0]) * node.spline.count[1] *
+                       node.spline.count[2];
+  if (coefficients.size() != count)
+    throw std::invalid_argument("AddBSplineVolume: degree " + std::to_string(degree) +
+                                " on these cells takes " + std::to_string(count) +
+                                " coefficients");
+  return AddNode(std::move(node), coefficients);
+}
+
+int Model::AddCurveSkeletonOffset(const SplineStructure& curve, const std::vector<double>& vectors,
+                                  double radius, std::string name) {
+  const std::string problem = CurveStructureProblem(curve);
+  if (!problem.empty()) throw std::invalid_argument("AddCurveSkeletonOffset: " + problem);
+  const size_t count = 3 * static_cast<size_t>(CurveVectorCount(curve));
+  if (vectors.size() != count)
+    throw std::invalid_argument("AddCurveSkeletonOffset: the curve takes " +
+                                std::to_string(count) + " numbers");
+  ModelNode node;
+  node.type = NodeType::kSkeletonOffset;
+  node.name = std::move(name);
+  node.count = static_cast<int>(count / 3);
+  node.variant = static_cast<int>(SkeletonKind::kCurve);
+  node.spline = curve;
+  std::vector<double> p = vectors;
+  p.push_back(radius);
+  return AddNode(std::move(node), p);
 }
 
 int Model::AddOperator(NodeType type, std::vector<int> children, double delta, double epsilon,

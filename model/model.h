@@ -21,6 +21,7 @@
 #include "model/bernstein/bernstein_patch.h"
 #include "model/primitives/blobs.h"
 #include "model/primitives/box.h"
+#include "model/primitives/coleman_curve_features.h"
 #include "model/primitives/coleman_features.h"
 #include "model/primitives/cone.h"
 #include "model/blends/convex_smooth_ops.h"
@@ -36,6 +37,9 @@
 #include "model/blends/smooth_ops.h"
 #include "model/primitives/sphere.h"
 #include "model/primitives/torus.h"
+#include "model/splines/bspline_surface_distance.h"
+#include "model/splines/bspline_volume.h"
+#include "model/splines/curve_skeleton.h"
 
 namespace implicitfit {
 
@@ -61,6 +65,8 @@ enum class NodeType {
   kBernsteinMesh,      // model/bernstein/bernstein_mesh.h: degree, grid, continuity; control_points
   kPartitionSequence,  // soft partition by separator planes (model/blends/partition_sequence.h)
   kColemanFeatures,    // Coleman's features on a core distance (model/primitives/coleman_features.h)
+  kBSplineSurface,     // signed distance to a B-spline / NURBS patch (model/splines/bspline_surface_distance.h)
+  kBSplineVolume,      // trivariate tensor B-spline implicit over a box (model/splines/bspline_volume.h)
 };
 
 // The JSON "type" string of a node type, and back (false when unknown).
@@ -119,6 +125,8 @@ struct ModelNode {
   std::vector<std::vector<double>> cuts;  // partition: the cuts of x, y, z (structure)
   BernsteinGrid grid;                     // bernstein_mesh: the Kuhn grid
   int continuity = 0;                     // bernstein_mesh: declared continuity, 0 or 1
+  SplineStructure spline;  // bspline_surface, bspline_volume, curve skeletons: degrees, knots, ...
+  std::vector<int> curve_vertices;  // coleman_features: the vertex count of each curve feature
 };
 
 // One fold step of a union / intersection / difference node: op(a, b) with the node's
@@ -192,6 +200,9 @@ class Model {
   int AddSkeletonOffsetWithFeatures(SkeletonKind kind, const std::vector<double>& points,
                                     double radius, const std::vector<double>& features,
                                     std::string name = "");
+  // Appends Coleman features (7 numbers each) to the skeleton_offset node just added (a curve
+  // skeleton's, e.g.); returns index. Throws std::invalid_argument otherwise.
+  int AddSkeletonFeatures(int index, const std::vector<double>& features);
   // Grid partition (model/blends/partition.h): 3 strictly increasing cut lists, every finite cell
   // >= 2 epsilon wide, (a+1)(b+1)(c+1) children (x fastest), 0 <= order <= 14; throws
   // std::invalid_argument otherwise.
@@ -212,8 +223,27 @@ class Model {
   // flare), m >= 1. Throws std::invalid_argument otherwise.
   int AddColemanFeatures(int core, double core_radius, const std::vector<double>& features,
                          std::string name = "");
+  // The same with curve features (model/primitives/coleman_curve_features.h): each entry of
+  // `curves` is [3 n vertices (n >= 1), W, D, R, flare]; point features may then be empty.
+  int AddColemanCurveFeatures(int core, double core_radius, const std::vector<double>& features,
+                              const std::vector<std::vector<double>>& curves,
+                              std::string name = "");
   int AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuity,
                        const std::vector<double>& control_points, std::string name = "");
+  // A B-spline / NURBS surface (model/splines/bspline_surface_distance.h): its structure
+  // (degrees, counts n_u x n_v, knots, optional weights) and 3 n_u n_v control point numbers
+  // (P_ij at 3 (i n_v + j)). Throws std::invalid_argument naming the problem otherwise.
+  int AddBSplineSurface(const SplineStructure& structure, const std::vector<double>& control_points,
+                        std::string name = "");
+  // A bspline_volume (model/splines/bspline_volume.h) of degree k over box with cells; the
+  // (n_x + k)(n_y + k)(n_z + k) coefficients, x fastest. Throws std::invalid_argument otherwise.
+  int AddBSplineVolume(int degree, const double box[6], const int cells[3],
+                       const std::vector<double>& coefficients, std::string name = "");
+  // A tube of radius r around a curve (model/splines/curve_skeleton.h): skeleton_offset with
+  // SkeletonKind::kCurve; `curve` holds the kind, degree, knots, weights or turns, `vectors` its
+  // 3-vectors (control points; ellipse c, A, B; helix c, A, B, C).
+  int AddCurveSkeletonOffset(const SplineStructure& curve, const std::vector<double>& vectors,
+                             double radius, std::string name = "");
   void SetRoot(int node) { root_ = node; }
 
   int root() const { return root_; }
@@ -314,30 +344,47 @@ T Model::EvaluateNode(int index, const T* params, const T* x) const {
           [&](int j) { return EvaluateNode(node.children[j], params, x); },
           [&](int j) { return EvaluateNode(node.children[m + j], params, x); });
     }
-    case NodeType::kColemanFeatures:
-      return ColemanFeatures::Evaluate(
-          node.count, p, x, [&](const T* y) { return EvaluateNode(node.children[0], params, y); });
+    case NodeType::kColemanFeatures: {
+      auto core = [&](const T* y) { return EvaluateNode(node.children[0], params, y); };
+      const T f = ColemanFeatures::Evaluate(node.count, p, x, core);
+      if (node.curve_vertices.empty()) return f;
+      return ColemanCurveFeatures::Evaluate(
+          node.curve_vertices, p[0], p + 1 + ColemanFeatures::kPerFeature * node.count, x, f, core);
+    }
     case NodeType::kBlobs:
       return BlobsEvaluator::Evaluate(static_cast<BlobKernel>(node.variant), node.order, node.count,
                                       p, x);
     case NodeType::kSkeletonOffset: {
       const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
       const int features = SkeletonFeatureCount(node);
-      if (features == 0) return SkeletonOffsetEvaluator::Evaluate(kind, node.count, p, x);
+      auto nearest = [&](const T* y, T* c) {  // distance to the skeleton, nearest point c
+        if (kind == SkeletonKind::kCurve) return CurveSkeletonClosest(node.spline, p, y, c);
+        return SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
+      };
+      if (features == 0) {
+        if (kind != SkeletonKind::kCurve)
+          return SkeletonOffsetEvaluator::Evaluate(kind, node.count, p, x);
+        T c[3];
+        return nearest(x, c) - p[3 * node.count];
+      }
       // docs/maths.md CO-2: Coleman's features in field mode, R_C = radius (model/primitives/coleman_features.h)
       auto closest = [&](const T* y, T* c, T* n) {
-        SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
+        nearest(y, c);
         ColemanFeatures::DirectionFrom(c, y, n);
       };
       auto distance = [&](const T* y) {
         T c[3];
-        return SkeletonOffsetEvaluator::Closest(kind, node.count, p, y, c);
+        return nearest(y, c);
       };
       return ColemanFeatures::EvaluateOnCore(features, p + 3 * node.count, x, distance, closest);
     }
     case NodeType::kMorph:
       return Morph(p[0], EvaluateNode(node.children[0], params, x),
                    EvaluateNode(node.children[1], params, x));
+    case NodeType::kBSplineSurface:
+      return BSplineSurfaceSignedDistance(node.spline, p, x);
+    case NodeType::kBSplineVolume:
+      return BSplineVolumeEvaluator::Evaluate(node.spline, p, x);
   }
   return T(0.0);
 }

@@ -17,6 +17,17 @@ constexpr double kSamplingMeshCells = 80.0;
 
 void NodeBox(const Model& model, int index, Vec* lo, Vec* hi);
 
+// The exact box of an ellipse c + A cos + B sin (c_k +- hypot(A_k, B_k)) or of a helix (the
+// same, swept by C t over [0, turns]).
+void CurveBox(const SplineStructure& s, const double* p, Vec* lo, Vec* hi) {
+  for (int k = 0; k < 3; ++k) {
+    const double half = std::hypot(p[3 + k], p[6 + k]);
+    const double rise = s.curve == CurveKind::kHelix ? p[9 + k] * s.turns : 0.0;
+    (*lo)[k] = p[k] + std::min(0.0, rise) - half;
+    (*hi)[k] = p[k] + std::max(0.0, rise) + half;
+  }
+}
+
 // The union of the children's boxes.
 void ChildrenBox(const Model& model, const ModelNode& node, Vec* lo, Vec* hi) {
   NodeBox(model, node.children[0], lo, hi);
@@ -84,6 +95,13 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
         reach = std::max(reach, p[3 * m] + e[4] + e[3] + e[5]);
       }
       const double r = 1.05 * reach;
+      if (node.variant == static_cast<int>(SkeletonKind::kCurve) &&
+          node.spline.curve != CurveKind::kBSpline) {
+        CurveBox(node.spline, p, lo, hi);
+        *lo -= Vec::Constant(r);
+        *hi += Vec::Constant(r);
+        return;
+      }
       *lo = Vec(p[0], p[1], p[2]);
       *hi = *lo;
       for (int i = 1; i < m; ++i) {
@@ -111,10 +129,30 @@ void NodeBox(const Model& model, int index, Vec* lo, Vec* hi) {
         const double* e = p + 1 + ColemanFeatures::kPerFeature * q;
         reach = std::max(reach, p[0] + e[4] + e[3] + e[5]);
       }
+      const double* c = p + 1 + ColemanFeatures::kPerFeature * node.count;
+      for (int n : node.curve_vertices) {  // curve features: [3 n vertices, W, D, R, flare]
+        reach = std::max(reach, p[0] + c[3 * n + 1] + c[3 * n] + c[3 * n + 2]);
+        c += 3 * n + 4;
+      }
       *lo -= Vec::Constant(1.05 * reach);
       *hi += Vec::Constant(1.05 * reach);
       return;
     }
+    case NodeType::kBSplineSurface: {  // the control net's box (convex hull), grown by 5%
+      *lo = *hi = Vec(p[0], p[1], p[2]);
+      for (int i = 1; i < node.count; ++i) {
+        *lo = lo->cwiseMin(Vec(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+        *hi = hi->cwiseMax(Vec(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+      }
+      const Vec margin = Vec::Constant(0.05 * (*hi - *lo).maxCoeff());
+      *lo -= margin;
+      *hi += margin;
+      return;
+    }
+    case NodeType::kBSplineVolume:
+      *lo = Vec(node.spline.box[0], node.spline.box[1], node.spline.box[2]);
+      *hi = Vec(node.spline.box[3], node.spline.box[4], node.spline.box[5]);
+      return;
     case NodeType::kPartition:
     case NodeType::kComplement:
     case NodeType::kMorph:

@@ -230,11 +230,46 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
       cell[a] = std::clamp(static_cast<int>(std::floor(centroid[a])), 0, grid.n[a] - 2);
     triangle_cells.push_back(cell);
   }
+  // 3b. Jumps: a grid edge whose ends differ in sign but across which f jumps instead of
+  // passing through 0 (the signed distance to an open patch, beyond its boundary) leaves its
+  // vertex at |f| far above the rounding level: triangles touching such a vertex are dropped.
+  if (options.drop_jumps) {
+    std::vector<int> remap(num_points, -1);
+    std::vector<Eigen::Vector3i> kept, kept_cells;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Eigen::Vector3i& tri = mesh.triangles[t];
+      if (abs_value[tri[0]] > kJumpFraction * h || abs_value[tri[1]] > kJumpFraction * h ||
+          abs_value[tri[2]] > kJumpFraction * h) {
+        ++result.jump_triangles;
+        continue;
+      }
+      kept.push_back(tri);
+      kept_cells.push_back(triangle_cells[t]);
+    }
+    if (result.jump_triangles > 0) {
+      std::vector<Vec> vertices;
+      std::vector<double> values;
+      for (Eigen::Vector3i& tri : kept)
+        for (int k = 0; k < 3; ++k) {
+          if (remap[tri[k]] < 0) {
+            remap[tri[k]] = static_cast<int>(vertices.size());
+            vertices.push_back(mesh.vertices[tri[k]]);
+            values.push_back(abs_value[tri[k]]);
+          }
+          tri[k] = remap[tri[k]];
+        }
+      mesh.vertices.swap(vertices);
+      mesh.triangles.swap(kept);
+      triangle_cells.swap(kept_cells);
+      result.max_abs_value = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+    }
+  }
+  const vtkIdType num_vertices = static_cast<vtkIdType>(mesh.vertices.size());
   // 4. Normals from grad f; orient the triangles with it (one global decision by majority,
   // so the case table's consistent orientation is kept).
-  mesh.normals.assign(num_points, Vec::Zero());
-  std::vector<Vec> face_sum(num_points, Vec::Zero());
-  for (vtkIdType v = 0; v < num_points; ++v) {
+  mesh.normals.assign(num_vertices, Vec::Zero());
+  std::vector<Vec> face_sum(num_vertices, Vec::Zero());
+  for (vtkIdType v = 0; v < num_vertices; ++v) {
     const Vec g = model.Gradient(mesh.vertices[v]);
     const double n = g.norm();
     if (std::isfinite(n) && n > 0) mesh.normals[v] = g / n;
@@ -254,7 +289,7 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
     const Vec cross = (mesh.vertices[t[1]] - p0).cross(mesh.vertices[t[2]] - p0);
     for (int k = 0; k < 3; ++k) face_sum[t[k]] += cross;
   }
-  for (vtkIdType v = 0; v < num_points; ++v)
+  for (vtkIdType v = 0; v < num_vertices; ++v)
     if (mesh.normals[v].isZero()) {
       const double n = face_sum[v].norm();
       mesh.normals[v] = n > 0 ? Vec(face_sum[v] / n) : Vec(0, 0, 1);

@@ -11,6 +11,9 @@
 //      f on that edge by the Illinois (modified regula falsi) method, which keeps it bracketed,
 //      so |f(vertex)| ends at the evaluation's rounding level for any continuous f (the linear
 //      interpolation of step 2 is only first-order accurate);
+//   3b. a vertex whose |f| stays above kJumpFraction h after step 3 marks a jump of f (a sign
+//      change without a zero: the signed distance to an open bspline_surface beyond its
+//      boundary), not a surface: the triangles touching it are dropped (drop_jumps);
 //   4. vertex normals are grad f / |grad f| (outward, docs/design.md sign); where the gradient is
 //      zero or not finite, the mean of the adjacent triangles' normals.
 // Grid values that are NaN count as outside (+h); exact zeros are nudged to +tiny so that no
@@ -42,6 +45,9 @@ struct TriangleMesh {
       triangles;  // indices into vertices, counter-clockwise seen from outside
 };
 
+// Step 3b: |f| at a refined vertex above this fraction of the cell marks a jump.
+constexpr double kJumpFraction = 0.25;
+
 struct MeshOptions {
   bool has_box = false;  // use box_min/box_max instead of the default box
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
@@ -49,6 +55,7 @@ struct MeshOptions {
   int num_threads = 0;               // for the grid values; 0 = hardware concurrency
   long max_grid_points = 64L << 20;  // refuse finer grids (memory: 8 bytes a point)
   bool sharp_features = true;        // step 5
+  bool drop_jumps = true;            // step 3b (header)
   double feature_angle_deg = 30.0;   // step 5: normals spreading more mark a crease or corner
 };
 
@@ -57,6 +64,7 @@ struct MeshResult {
   Eigen::Vector3d box_min, box_max;   // the box that was gridded
   double cell = 0.0;                  // the grid spacing used
   double max_abs_value = 0.0;         // max |f| over the refined (grid-edge) vertices
+  int jump_triangles = 0;             // step 3b: triangles dropped at jumps of f
   int feature_points = 0;             // step 5: vertices placed on creases and corners
   int feature_flips = 0;              // step 5: crease edges made by flips
   double max_feature_distance = 0.0;  // step 5: largest |f| / |grad f| at a feature point

@@ -6,6 +6,7 @@
 #include "model/certificates/bernstein_mesh_certificate.h"
 #include "model/certificates/convexity_certificate.h"
 #include "model/certificates/symmetric_eigen3.h"
+#include "model/splines/bspline_volume_certificate.h"
 
 namespace implicitfit {
 namespace {
@@ -104,6 +105,22 @@ NodeCertificate CertifyLeaf(const Model& model, int index) {
       NodeCertificate r = Leaf(TreeConvexity::kConvexFunction,
                                "bernstein_mesh certified convex on its box (every A^mu positive "
                                "definite, C1 across the faces)");
+      r.domain_nodes.push_back(index);
+      return r;
+    }
+    case NodeType::kBSplineSurface:
+      return Leaf(TreeConvexity::kNotCertified,
+                  "bspline_surface: signed distance to an open patch, not certified");
+    case NodeType::kBSplineVolume: {
+      const VolumeConvexityCertificate c = CertifyVolumeConvexity(node.spline, p);
+      if (!c.convex)
+        return Leaf(TreeConvexity::kNotCertified,
+                    "bspline_volume: not every Hessian Bernstein coefficient matrix is positive "
+                    "definite");
+      NodeCertificate r =
+          Leaf(TreeConvexity::kConvexFunction,
+               "bspline_volume certified (Hessian Bernstein coefficients positive definite on "
+               "every cell): convex on its box");
       r.domain_nodes.push_back(index);
       return r;
     }

@@ -19,6 +19,8 @@
 //   torus, quadric with A indefinite, uncertified patch, paraboloid with curvature < 0,
 //   skeleton_offset of several elements, blobs, complement, partition, uncertified mesh: not
 //   certified.
+//   bspline_volume certified per cell (model/splines/bspline_volume_certificate.h): convex function
+//     on its box (`domain` names it); bspline_surface: not certified.
 // morph t f_A + (1 - t) f_B of two convex functions: convex function (convex combination).
 // Operators (n = order; children fold left to right, so the rule is applied to all children):
 //   intersection, n = 0 (sharp max, any smoothing): max of convex functions is convex; the
@@ -47,8 +49,8 @@ struct NodeCertificate {
   TreeConvexity convexity = TreeConvexity::kNotCertified;
   std::string rule;                 // why, in words (the leaf class or the operator rule)
   std::vector<int> domain_nodes;  // f convex only within the domains of these nodes (a
-                                  // bernstein_patch's tetrahedron, a bernstein_mesh's box), their
-                                  // intersection; empty: everywhere
+                                  // bernstein_patch's tetrahedron, a bernstein_mesh's or a
+                                  // bspline_volume's box), their intersection; empty: everywhere
 };
 
 // One certificate per node of the model, indexed like Model::nodes().

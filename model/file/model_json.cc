@@ -5,6 +5,7 @@
 #include <set>
 
 #include "model/file/bernstein_mesh_json.h"
+#include "model/file/spline_json.h"
 #include "model/primitives/primitive_kinds.h"
 
 namespace implicitfit {
@@ -334,6 +335,13 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   const json& s = node.at("skeleton");
   const std::string key = s.begin().key();
   const json& list = s.begin().value();
+  if (key == "curve") {  // model/file/spline_json.h
+    const double radius = Number(node, "radius", path);
+    RequirePositive(radius, path + ".radius");
+    const std::vector<double> features =
+        node.contains("features") ? ReadFeatureList(node, path) : std::vector<double>{};
+    return ReadCurveSkeletonOffset(list, where + ".curve", radius, features, name, model);
+  }
   SkeletonKind kind;
   if (key == "points")
     kind = SkeletonKind::kPoints;
@@ -344,7 +352,7 @@ int ReadSkeletonOffset(const json& node, const std::string& path, const std::str
   else if (key == "triangles")
     kind = SkeletonKind::kTriangles;
   else
-    Fail(where + "." + key, "unknown skeleton (points, segments, polyline or triangles)");
+    Fail(where + "." + key, "unknown skeleton (points, segments, polyline, triangles or curve)");
   const size_t least = kind == SkeletonKind::kPolyline ? 2 : 1;
   if (list.is_array()) RequireAtMostElements(list.size(), where + "." + key, "skeleton elements");
   if (!list.is_array() || list.size() < least)
@@ -512,12 +520,18 @@ int ReadColemanFeatures(const json& node, const std::string& path, int depth,
                         const std::string& name, Model* model) {
   const double core_radius = Number(node, "core_radius", path);
   RequirePositive(core_radius, path + ".core_radius");
-  const std::vector<double> features = ReadFeatureList(node, path);
+  // Point features may be absent when there are curve features (model/file/spline_json.h).
+  const bool curves = node.contains("curve_features");
+  const std::vector<double> features =
+      curves && !node.contains("features") ? std::vector<double>{} : ReadFeatureList(node, path);
+  const std::vector<std::vector<double>> curve_features =
+      curves ? ReadCurveFeatures(node.at("curve_features"), path + ".curve_features")
+             : std::vector<std::vector<double>>{};
   if (!node.contains("children") || !node.at("children").is_array() ||
       node.at("children").size() != 1)
     Fail(path + ".children", "must hold exactly 1 node: the core (a signed distance)");
   const int core = ReadNode(node.at("children")[0], path + ".children[0]", depth + 1, model);
-  return model->AddColemanFeatures(core, core_radius, features, name);
+  return model->AddColemanCurveFeatures(core, core_radius, features, curve_features, name);
 }
 
 std::set<std::string> AllowedKeys(NodeType type) {
@@ -533,9 +547,11 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kBlobs) keys.insert({"kernel", "order"});
   if (type == NodeType::kPartition) keys.insert({"cuts", "order", "children"});
   if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
-  if (type == NodeType::kColemanFeatures) keys.insert("children");
+  if (type == NodeType::kColemanFeatures) keys.insert({"children", "curve_features"});
   if (type == NodeType::kSkeletonOffset) keys.insert("features");  // docs/maths.md CO-2
   if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
+  if (type == NodeType::kBSplineSurface) keys.insert({"degree", "knots_u", "knots_v", "weights"});
+  if (type == NodeType::kBSplineVolume) keys.insert({"degree", "box", "cells"});
   return keys;
 }
 
@@ -577,6 +593,8 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
       bool known = false;
       for (const ParameterField& pf : ParameterFieldsOf(type)) known |= field == pf.name;
       known |= type == NodeType::kSkeletonOffset && field == "features" && node.contains(field);
+      known |= type == NodeType::kColemanFeatures && field == "curve_features" &&
+               node.contains(field);
       if (!known) Fail(where, "'" + field + "' is not a parameter of a " + type_name);
       fixed.push_back(field);
     }
@@ -622,6 +640,10 @@ int ReadNode(const json& node, const std::string& path, int depth, Model* model)
     index = ReadSkeletonOffset(node, path, name, model);
   } else if (type == NodeType::kBernsteinMesh) {
     index = ReadBernsteinMeshNode(node, path, name, model);
+  } else if (type == NodeType::kBSplineSurface) {
+    index = ReadBSplineSurfaceNode(node, path, name, model);
+  } else if (type == NodeType::kBSplineVolume) {
+    index = ReadBSplineVolumeNode(node, path, name, model);
   } else {
     index = model->AddPrimitive(type, PrimitiveParameters(type, node, path), name);
   }
@@ -677,7 +699,9 @@ json WriteNode(const Model& model, int index) {
   } else if (node.type == NodeType::kColemanFeatures) {
     const int b = node.first_parameter;
     out["core_radius"] = p[b];
-    out["features"] = WriteFeatureList(p, b + 1, node.count);
+    if (node.count > 0 || node.curve_vertices.empty())
+      out["features"] = WriteFeatureList(p, b + 1, node.count);
+    if (!node.curve_vertices.empty()) out["curve_features"] = WriteCurveFeatures(model, node);
     out["children"] = json::array({WriteNode(model, node.children[0])});
   } else if (node.type == NodeType::kPartitionSequence) {
     json separators = json::array(), children = json::array();
@@ -705,7 +729,9 @@ json WriteNode(const Model& model, int index) {
     const int b = node.first_parameter, m = node.count;
     const SkeletonKind kind = static_cast<SkeletonKind>(node.variant);
     json list = json::array();
-    if (kind == SkeletonKind::kSegments) {
+    if (kind == SkeletonKind::kCurve) {
+      out["skeleton"] = WriteCurveSkeleton(model, node);
+    } else if (kind == SkeletonKind::kSegments) {
       for (int i = 0; i < m; i += 2)
         list.push_back(json::array({Slice(p, b + 3 * i, 3), Slice(p, b + 3 * i + 3, 3)}));
     } else if (kind == SkeletonKind::kTriangles) {
@@ -719,7 +745,7 @@ json WriteNode(const Model& model, int index) {
                       : kind == SkeletonKind::kSegments  ? "segments"
                       : kind == SkeletonKind::kTriangles ? "triangles"
                                                          : "polyline";
-    out["skeleton"] = json{{key, list}};
+    if (kind != SkeletonKind::kCurve) out["skeleton"] = json{{key, list}};
     out["radius"] = p[b + 3 * m];
     if (const int features = SkeletonFeatureCount(node))
       out["features"] = WriteFeatureList(p, b + 3 * m + 1, features);
@@ -734,6 +760,10 @@ json WriteNode(const Model& model, int index) {
     out["half_sizes"] = Slice(p, b + 7, 3);
   } else if (node.type == NodeType::kBernsteinMesh) {
     WriteBernsteinMeshNode(model, node, &out);
+  } else if (node.type == NodeType::kBSplineSurface) {
+    WriteBSplineSurfaceNode(model, node, &out);
+  } else if (node.type == NodeType::kBSplineVolume) {
+    WriteBSplineVolumeNode(model, node, &out);
   } else if (node.type == NodeType::kEllipsoid) {
     const int b = node.first_parameter;
     out["center"] = Slice(p, b, 3);

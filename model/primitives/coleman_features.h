@@ -97,16 +97,9 @@ struct ColemanFeatures {
     for (int k = 0; k < 3; ++k) n[k] = ValueOf(len) > 0.0 ? v[k] / len : T(k == 2 ? 1.0 : 0.0);
   }
 
- private:
   template <typename T>
   static T Clamped(const T& v) {
     return ValueOf(v) > 0.0 ? v : T(0.0);
-  }
-  template <typename T>
-  static T Length(const T* v) {
-    const T s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    using std::sqrt;
-    return ValueOf(s) > 0.0 ? sqrt(s) : T(0.0);
   }
   // c(y) = y - d(y) grad d(y); *n = the unit direction from c(y) to y, or the core's gradient
   // direction when y is on or in the core.
@@ -126,6 +119,14 @@ struct ColemanFeatures {
     for (int k = 0; k < 3; ++k) n[k] = ValueOf(len) > 0.0 ? grad[k] / len : T(k == 2 ? 1.0 : 0.0);
     const T d = Clamped(core(y));
     for (int k = 0; k < 3; ++k) c[k] = y[k] - d * n[k];
+  }
+
+ private:
+  template <typename T>
+  static T Length(const T* v) {
+    const T s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    using std::sqrt;
+    return ValueOf(s) > 0.0 ? sqrt(s) : T(0.0);
   }
 };
 

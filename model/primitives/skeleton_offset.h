@@ -25,7 +25,9 @@
 
 namespace implicitfit {
 
-enum class SkeletonKind { kPoints = 0, kSegments = 1, kPolyline = 2, kTriangles = 3 };
+// kCurve: a B-spline, NURBS, ellipse or helix (model/splines/curve_skeleton.h; evaluated by the
+// model tree, which holds the curve's structure).
+enum class SkeletonKind { kPoints = 0, kSegments = 1, kPolyline = 2, kTriangles = 3, kCurve = 4 };
 
 struct SkeletonOffsetEvaluator {
   // Distance from x to the segment [a, b]; a point when b == a.

@@ -1,0 +1,312 @@
+#include "fit/splines/freeform_detection.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+#include "fit/common/thread_count.h"
+#include "fit/splines/bspline_surface_fitter.h"
+#include "fit/splines/parameter_frame.h"
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+// Union-find over the members of one subset.
+struct Components {
+  std::vector<int> parent;
+  int Find(int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+};
+
+// The connected parts of `subset` over the neighbour graph, through pairs that pass `joined`,
+// largest first; member[] is scratch (size N, -1 outside any call).
+template <typename Joined>
+std::vector<std::vector<int>> ConnectedParts(const std::vector<int>& subset,
+                                             const std::vector<std::vector<int>>& neighbours,
+                                             const Joined& joined, std::vector<int>* member) {
+  Components uf;
+  uf.parent.resize(subset.size());
+  std::iota(uf.parent.begin(), uf.parent.end(), 0);
+  for (size_t a = 0; a < subset.size(); ++a) (*member)[subset[a]] = static_cast<int>(a);
+  for (size_t a = 0; a < subset.size(); ++a)
+    for (int j : neighbours[subset[a]]) {
+      const int b = (*member)[j];
+      if (b < 0 || !joined(subset[a], j)) continue;
+      const int ra = uf.Find(static_cast<int>(a)), rb = uf.Find(b);
+      if (ra != rb) uf.parent[ra] = rb;
+    }
+  std::vector<std::vector<int>> parts;
+  std::vector<int> slot(subset.size(), -1);
+  for (size_t a = 0; a < subset.size(); ++a) {
+    const int r = uf.Find(static_cast<int>(a));
+    if (slot[r] < 0) {
+      slot[r] = static_cast<int>(parts.size());
+      parts.emplace_back();
+    }
+    parts[slot[r]].push_back(subset[a]);
+  }
+  for (int i : subset) (*member)[i] = -1;
+  std::sort(parts.begin(), parts.end(),
+            [](const std::vector<int>& x, const std::vector<int>& y) { return x.size() > y.size(); });
+  return parts;
+}
+
+struct Candidate {
+  bool ok = false;
+  SurfaceFitResult fit;
+  double cost = 0.0;
+};
+
+class FreeformStage {
+ public:
+  FreeformStage(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                const std::vector<std::vector<int>>& neighbours, const FreeformOptions& o)
+      : points_(points), normals_(normals), neighbours_(neighbours), o_(o),
+        member_(points.size(), -1) {
+    cos_theta_ = std::cos(o.normal_angle_deg * M_PI / 180.0);
+    s_ = std::clamp(o.noise, o.threshold / 10.0, o.threshold / 3.0);
+    threads_ = ThreadCountOrDefault(o.num_threads);
+  }
+
+  // Steps 2-4 of the header on one region.
+  void Process(const std::vector<int>& region, int depth) {
+    if (static_cast<int>(region.size()) < o_.min_points) {
+      ++result_.small_parts;
+      result_.small_part_points += static_cast<int>(region.size());
+      return;
+    }
+    std::vector<Vec> p, n;
+    Gather(region, &p, &n);
+    ParameterFrame frame;
+    try {
+      frame = FitParameterFrame(p, n);
+    } catch (const std::invalid_argument&) {
+      return;
+    }
+    int folded = 0;
+    for (const Vec& x : n) folded += x.dot(frame.normal) < std::cos(80.0 * M_PI / 180.0);
+    if (folded > 0.02 * n.size()) {
+      ++result_.folded;
+      Split(region, p, depth);
+      return;
+    }
+    const Candidate best = BestGrid(p, n, frame);
+    if (!best.ok) {
+      ++result_.no_grid;
+      Split(region, p, depth);
+      return;
+    }
+    // Support, refit on it, support again (step 4).
+    std::vector<int> support = Support(region, best.fit.ToModel());
+    if (static_cast<int>(support.size()) < o_.min_points) {
+      ++result_.small_support;
+      Split(region, p, depth);
+      return;
+    }
+    SurfaceFitOptions fo = FitOptions(best.fit.count_u, best.fit.count_v, true);
+    std::vector<Vec> sp, sn;
+    Gather(support, &sp, &sn);
+    const SurfaceFitResult refit = FitBSplineSurface(sp, sn, fo);
+    ++result_.fits;
+    const SurfaceFitResult& final_fit = refit.success ? refit : best.fit;
+    const Model model = final_fit.ToModel();
+    support = Support(region, model);
+    double sum = 0.0;
+    int agree = 0;
+    std::vector<double> r(support.size());
+    for (size_t k = 0; k < support.size(); ++k) {
+      double f;
+      const Vec g = model.Gradient(points_[support[k]], &f);
+      r[k] = f;
+      sum += f * f;
+      agree += g.dot(normals_[support[k]]) > 0;
+    }
+    const double rms = support.empty() ? INFINITY : std::sqrt(sum / support.size());
+    if (static_cast<int>(support.size()) < o_.min_points || rms > 2.0 * o_.noise) {
+      ++(rms > 2.0 * o_.noise ? result_.rms_over : result_.small_support);
+      Split(region, p, depth);
+      return;
+    }
+    FreeformSurface surface;
+    surface.model = model;
+    surface.points = support;
+    std::sort(surface.points.begin(), surface.points.end());
+    surface.rms_distance = rms;
+    surface.count_u = final_fit.count_u;
+    surface.count_v = final_fit.count_v;
+    surface.normal_side = agree >= 0.9 * support.size() ? "outward"
+                          : agree <= 0.1 * support.size() ? "inward" : "unknown";
+    for (size_t k = 0; k < support.size(); ++k) assigned_[support[k]] = r[k];
+    result_.surfaces.push_back(std::move(surface));
+    // What the patch left of the region may hold another surface.
+    std::vector<int> rest;
+    for (int i : region)
+      if (!assigned_.count(i)) rest.push_back(i);
+    if (depth < o_.max_depth)
+      for (const std::vector<int>& part : SmoothParts(rest)) Process(part, depth + 1);
+  }
+
+  std::vector<std::vector<int>> SmoothParts(const std::vector<int>& subset) {
+    return ConnectedParts(
+        subset, neighbours_,
+        [&](int i, int j) { return normals_[i].dot(normals_[j]) >= cos_theta_; }, &member_);
+  }
+
+  FreeformResult& result() { return result_; }
+  const std::map<int, double>& assigned() const { return assigned_; }
+
+ private:
+  void Gather(const std::vector<int>& ids, std::vector<Vec>* p, std::vector<Vec>* n) const {
+    for (int i : ids) {
+      p->push_back(points_[i]);
+      n->push_back(normals_[i]);
+    }
+  }
+
+  SurfaceFitOptions FitOptions(int nu, int nv, bool refine) const {
+    SurfaceFitOptions fo;
+    fo.degree = o_.degree;
+    fo.count_u = nu;
+    fo.count_v = nv;
+    fo.refine_rounds = refine ? 2 : 0;
+    fo.correction_rounds = refine ? 8 : 4;
+    fo.num_threads = o_.num_threads;
+    return fo;
+  }
+
+  // Step 3: the grid of least penalised cost, if it beats leaving the points unassigned.
+  Candidate BestGrid(const std::vector<Vec>& p, const std::vector<Vec>& n,
+                     const ParameterFrame& frame) {
+    const double n_points = static_cast<double>(p.size());
+    const double cap = o_.threshold * o_.threshold / (s_ * s_);
+    Candidate best;
+    best.cost = n_points * cap;  // every point unassigned
+    const double aspect = std::min(frame.length_v / frame.length_u, 1.0);
+    int worse = 0;
+    for (int nu : {4, 6, 8, 12, 16}) {
+      nu = std::max(nu, o_.degree + 1);
+      const int nv = std::max(o_.degree + 1, static_cast<int>(std::lround(nu * aspect)));
+      if (n_points < 5.0 * nu * nv) break;
+      const SurfaceFitResult fit = FitBSplineSurface(p, n, FitOptions(nu, nv, false));
+      ++result_.fits;
+      if (!fit.success) continue;
+      double cost = 3.0 * nu * nv * std::log(n_points);
+      for (double r : fit.residuals) cost += std::min(r * r / (s_ * s_), cap);
+      if (cost < best.cost) {
+        best.ok = true;
+        best.cost = cost;
+        best.fit = fit;
+        worse = 0;
+      } else if (++worse >= 2) {
+        break;
+      }
+    }
+    return best;
+  }
+
+  // The region's points within both bands of the patch, their largest connected part.
+  std::vector<int> Support(const std::vector<int>& region, const Model& model) {
+    std::vector<char> in(region.size(), 0);
+    ParallelFor(region.size(), threads_, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) {
+        double f;
+        const Vec g = model.Gradient(points_[region[k]], &f);
+        const double gn = g.norm();
+        in[k] = std::abs(f) < o_.threshold && gn > 0 &&
+                std::abs(g.dot(normals_[region[k]])) >= cos_theta_ * gn;
+      }
+    });
+    std::vector<int> close;
+    for (size_t k = 0; k < region.size(); ++k)
+      if (in[k]) close.push_back(region[k]);
+    const std::vector<std::vector<int>> parts =
+        ConnectedParts(close, neighbours_, [](int, int) { return true; }, &member_);
+    return parts.empty() ? std::vector<int>{} : parts[0];
+  }
+
+  // Step 2's split at the median of the longest principal axis; each half's smooth parts.
+  void Split(const std::vector<int>& region, const std::vector<Vec>& p, int depth) {
+    if (depth >= o_.max_depth) {
+      ++result_.depth_limit;
+      return;
+    }
+    ++result_.splits;
+    Vec c = Vec::Zero();
+    for (const Vec& x : p) c += x;
+    c /= static_cast<double>(p.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Vec& x : p) cov += (x - c) * (x - c).transpose();
+    const Vec axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(2);
+    std::vector<double> along(p.size());
+    for (size_t k = 0; k < p.size(); ++k) along[k] = (p[k] - c).dot(axis);
+    std::vector<double> sorted = along;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    std::vector<int> halves[2];
+    for (size_t k = 0; k < p.size(); ++k) halves[along[k] < median ? 0 : 1].push_back(region[k]);
+    for (const std::vector<int>& half : halves)
+      for (const std::vector<int>& part : SmoothParts(half)) Process(part, depth + 1);
+  }
+
+  const std::vector<Vec>& points_;
+  const std::vector<Vec>& normals_;
+  const std::vector<std::vector<int>>& neighbours_;
+  FreeformOptions o_;
+  std::vector<int> member_;
+  double cos_theta_ = 0.0, s_ = 0.0;
+  int threads_ = 1;
+  FreeformResult result_;
+  std::map<int, double> assigned_;  // point -> residual, every accepted patch's support
+};
+
+}  // namespace
+
+bool FreeformOptions::IsValid(std::string* error) const {
+  if (!(noise > 0) || !(threshold > 0) || !(normal_angle_deg > 0 && normal_angle_deg < 90) ||
+      min_points < 1 || degree < 1 || degree > SplineLimits::kMaxDegree || max_depth < 0) {
+    *error = "freeform: noise, threshold and normal band must be positive, min_points >= 1";
+    return false;
+  }
+  return true;
+}
+
+FreeformResult DetectFreeformSurfaces(const std::vector<Vec>& points, const std::vector<Vec>& normals,
+                                      const std::vector<std::vector<int>>& neighbours,
+                                      const FreeformOptions& options, int first_label,
+                                      std::vector<int>* labels, std::vector<double>* residuals) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  if (normals.size() != points.size() || neighbours.size() != points.size() ||
+      labels->size() != points.size())
+    throw std::invalid_argument("freeform: points, normals, neighbours and labels differ in size");
+  residuals->resize(points.size(), 0.0);
+  FreeformStage stage(points, normals, neighbours, options);
+  std::vector<int> free;
+  for (size_t i = 0; i < points.size(); ++i)
+    if ((*labels)[i] < 0) free.push_back(static_cast<int>(i));
+  for (const std::vector<int>& region : stage.SmoothParts(free)) {
+    if (static_cast<int>(region.size()) < options.min_points) break;  // largest first
+    ++stage.result().regions;
+    stage.result().region_points += static_cast<int>(region.size());
+    stage.Process(region, 0);
+  }
+  FreeformResult result = std::move(stage.result());
+  for (size_t s = 0; s < result.surfaces.size(); ++s)
+    for (int i : result.surfaces[s].points) {
+      (*labels)[i] = first_label + static_cast<int>(s);
+      (*residuals)[i] = stage.assigned().at(i);
+    }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace implicitfit

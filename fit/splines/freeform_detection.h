@@ -1,0 +1,76 @@
+// detect --freeform: the stage after primitive detection that turns the smooth regions no
+// primitive explains into B-spline surface primitives (fit/splines/bspline_surface_fitter.h),
+// with the detector's scales and rules (fit/detect/primitive_detector.h):
+//   1. Regions: the unassigned points, connected over the k-nearest-neighbour graph through
+//      pairs whose normals differ by less than the normal band theta (a crease or a fold stops a
+//      region); regions under min_points are left as they are.
+//   2. A region whose normals do not all face one side of its least-squares plane (more than 2%
+//      at over 80 degrees from its normal: a fold that no height-field parameterisation covers)
+//      is split in two at the median of its longest principal axis, each half's largest
+//      connected part taken again (at most max_depth splits deep).
+//   3. Fit and kind by penalised likelihood, as for the primitives: for each grid in
+//      {4, 6, 8, 12, 16} control points along the longer side (the other side in proportion, at
+//      least degree + 1; only grids with >= 5 points per control point: a 4 x 4 bicubic net
+//      fits a region of 80 points), the patch's cost on the region is
+//      C = sum_i min(r_i^2 / s^2, tau^2 / s^2) + p ln n, p = 3 n_u n_v, s = sigma clamped to
+//      [tau / 10, tau / 3] (the detector's), against the cost n tau^2 / s^2 of leaving every
+//      point unassigned; the cheapest patch wins if it beats that.
+//   4. Support: the region's points within the distance band tau and the normal band theta
+//      (|cos(S_u x S_v, n)| >= cos theta), cut to their largest connected part; the patch is
+//      refitted on it once. Accepted when the support holds >= min_points and its RMS distance is
+//      at most 2 sigma (the detector's rule for a primitive); a region failing that is split as in
+//      2 (the halves may be fitted where the whole is not), else left unassigned.
+// Each accepted patch gets the next label; the labels and residuals of the detection are
+// extended (residual: the point's signed distance to its patch).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "model/model.h"
+
+namespace implicitfit {
+
+struct FreeformOptions {
+  double noise = 0.0;             // sigma of the detection (> 0)
+  double threshold = 0.0;         // tau (> 0)
+  double normal_angle_deg = 0.0;  // theta (> 0)
+  int min_points = 10;
+  int degree = 3;
+  int max_depth = 6;    // splits per region at most
+  int num_threads = 0;  // 0: all cores
+  bool IsValid(std::string* error) const;
+};
+
+struct FreeformSurface {
+  Model model;              // one bspline_surface node
+  std::vector<int> points;  // indices into the cloud, ascending
+  double rms_distance = 0.0;
+  int count_u = 0, count_v = 0;
+  std::string normal_side = "unknown";  // "outward" when the normals follow S_u x S_v on >= 90%
+};
+
+struct FreeformResult {
+  std::vector<FreeformSurface> surfaces;
+  int regions = 0;          // smooth regions of at least min_points found in step 1
+  int region_points = 0;    // the points in them
+  int splits = 0, fits = 0;
+  // Why regions (or their parts) were not accepted: a fold (step 2), no grid beat leaving the
+  // points unassigned (step 3), a support under min_points or an RMS over 2 sigma (step 4), and
+  // the parts under min_points that splits left (their points stay unassigned), the parts
+  // refused at max_depth.
+  int folded = 0, no_grid = 0, small_support = 0, rms_over = 0, small_parts = 0, depth_limit = 0;
+  int small_part_points = 0;
+  double seconds = 0.0;
+};
+
+// labels / residuals: the detection's (one per point, -1 unassigned); accepted patches are
+// labelled first_label, first_label + 1, ... and their points' residuals set.
+FreeformResult DetectFreeformSurfaces(const std::vector<Eigen::Vector3d>& points,
+                                      const std::vector<Eigen::Vector3d>& normals,
+                                      const std::vector<std::vector<int>>& neighbours,
+                                      const FreeformOptions& options, int first_label,
+                                      std::vector<int>* labels, std::vector<double>* residuals);
+
+}  // namespace implicitfit

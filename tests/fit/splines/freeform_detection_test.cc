@@ -1,0 +1,91 @@
+// detect --freeform's stage (fit/splines/freeform_detection.h) on generated clouds: a wavy sheet
+// left unassigned beside a labelled plane becomes B-spline surface primitives that hold >= 95% of
+// its points, none of the plane's, with RMS <= 2 sigma; uniform random points give none.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <random>
+
+#include "datasets/normals/neighbourhoods.h"
+#include "fit/splines/freeform_detection.h"
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+TEST(FreeformDetection, WavySheetBecomesSplineSurfaces) {
+  const double sigma = 0.003;
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::vector<Vec> points, normals;
+  std::vector<int> labels;
+  const int sheet_points = 3000;
+  for (int i = 0; i < 2000; ++i) {  // the plane z = 0 over [-1, 1]^2, labelled 0
+    points.emplace_back(u(rng), u(rng), noise(rng));
+    normals.emplace_back(0, 0, 1);
+    labels.push_back(0);
+  }
+  const int sheet_begin = static_cast<int>(points.size());
+  for (int i = 0; i < sheet_points; ++i) {  // z = 0.5 + 0.15 sin(2x) cos(3y) over [2, 4] x [-1, 1]
+    const double x = 3 + u(rng), y = u(rng);
+    const double z = 0.5 + 0.15 * std::sin(2 * x) * std::cos(3 * y);
+    const Vec n = Vec(-0.3 * std::cos(2 * x) * std::cos(3 * y),
+                      0.45 * std::sin(2 * x) * std::sin(3 * y), 1.0).normalized();
+    points.push_back(Vec(x, y, z) + noise(rng) * n);
+    normals.push_back(n);
+    labels.push_back(-1);
+  }
+  const Neighbourhoods nb = FindNeighbourhoods(points);
+  FreeformOptions o;
+  o.noise = sigma;
+  o.threshold = 3 * sigma;
+  o.normal_angle_deg = 20;
+  o.min_points = 20;
+  std::vector<double> residuals;
+  const FreeformResult r = DetectFreeformSurfaces(points, normals, nb.indices, o, 1, &labels, &residuals);
+  ASSERT_GE(r.surfaces.size(), 1u);
+  int assigned = 0;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+    if (i < sheet_begin) {
+      EXPECT_EQ(labels[i], 0);
+      continue;
+    }
+    assigned += labels[i] >= 1;
+  }
+  EXPECT_GE(assigned, 0.95 * sheet_points);
+  for (const FreeformSurface& s : r.surfaces) {
+    EXPECT_LE(s.rms_distance, 2 * sigma);
+    EXPECT_EQ(s.normal_side, "outward");
+    EXPECT_EQ(s.model.nodes()[0].type, NodeType::kBSplineSurface);
+    for (int i : s.points) EXPECT_NEAR(residuals[i], s.model.Value(points[i]), 1e-12);
+  }
+  RecordProperty("surfaces", static_cast<int>(r.surfaces.size()));
+}
+
+TEST(FreeformDetection, RandomPointsGiveNoSurface) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec> points, normals;
+  for (int i = 0; i < 3000; ++i) {
+    points.emplace_back(u(rng), u(rng), u(rng));
+    normals.push_back(Vec(u(rng), u(rng), u(rng)).normalized());
+  }
+  std::vector<int> labels(points.size(), -1);
+  std::vector<double> residuals;
+  const Neighbourhoods nb = FindNeighbourhoods(points);
+  FreeformOptions o;
+  o.noise = 0.01;
+  o.threshold = 0.03;
+  o.normal_angle_deg = 20;
+  o.min_points = 30;
+  const FreeformResult r = DetectFreeformSurfaces(points, normals, nb.indices, o, 0, &labels, &residuals);
+  EXPECT_TRUE(r.surfaces.empty());
+  for (int l : labels) EXPECT_EQ(l, -1);
+}
+
+}  // namespace
+}  // namespace implicitfit
