@@ -188,14 +188,11 @@ class DomainLeastSquares {
       : grid_(grid),
         k_(k),
         n_(NumBernsteinControlPoints(k)),
-        domain_(DomainPointIndices(grid, k)),
-        nd_(NumDomainPoints(grid, k)),
         basis_(static_cast<size_t>(n_)) {
-    P_.resize(static_cast<long>(domain_.size()), nd_);
-    std::vector<Eigen::Triplet<double>> tp;
-    for (size_t i = 0; i < domain_.size(); ++i)
-      tp.emplace_back(static_cast<long>(i), domain_[i], 1.0);
-    P_.setFromTriplets(tp.begin(), tp.end());
+    const C0Parametrization c0 = BernsteinC0Parametrization(grid, k);
+    nd_ = c0.unknowns;
+    P_ = SparseMatrix(c0.P);
+    LocalMaps(c0);
     fixed_.resize(nd_, nd_);
     if (continuity == 1) {
       const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1);
@@ -295,12 +292,22 @@ class DomainLeastSquares {
         y[static_cast<long>(i - next)] = rhs_[order[i]];
       }
       next = end;
-      const Eigen::MatrixXd block = R.transpose() * R;
-      const Eigen::VectorXd local = R.transpose() * y;
-      const int* pos = &block_positions_[ti * n_ * n_];
-      for (long long a = 0; a < n_; ++a) {
-        g[domain_[t * n_ + a]] += local[a];
-        for (long long c = 0; c < n_; ++c) values[pos[a * n_ + c]] += block(c, a);
+      const std::vector<long long>& cols = cols_[t];
+      const long long m = static_cast<long long>(cols.size());
+      Eigen::MatrixXd block;
+      Eigen::VectorXd local;
+      if (maps_[t].size() == 0) {  // b_t = w[cols]: the rows act on the unknowns directly
+        block = R.transpose() * R;
+        local = R.transpose() * y;
+      } else {  // b_t = L_t w[cols] (hanging control points)
+        const Eigen::MatrixXd RL = R * maps_[t];
+        block = RL.transpose() * RL;
+        local = RL.transpose() * y;
+      }
+      const int* pos = &block_positions_[block_offsets_[ti]];
+      for (long long a = 0; a < m; ++a) {
+        g[cols[a]] += local[a];
+        for (long long c = 0; c < m; ++c) values[pos[a * m + c]] += block(c, a);
       }
     }
     // A tiny ridge keeps the system definite where nothing else reaches (far corners).
@@ -338,9 +345,8 @@ class DomainLeastSquares {
     std::vector<Eigen::Triplet<double>> ts;
     ts.reserve(tets.size() * n_ * n_);
     for (long long t : tets)
-      for (long long a = 0; a < n_; ++a)
-        for (long long c = 0; c < n_; ++c)
-          ts.emplace_back(domain_[t * n_ + c], domain_[t * n_ + a], 1.0);
+      for (long long a : cols_[t])
+        for (long long c : cols_[t]) ts.emplace_back(c, a, 1.0);
     for (long long i = 0; i < nd_; ++i) ts.emplace_back(i, i, 1.0);
     for (int j = 0; j < fixed_.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(fixed_, j); it; ++it)
@@ -353,12 +359,13 @@ class DomainLeastSquares {
       const auto* last = H_.innerIndexPtr() + H_.outerIndexPtr()[col + 1];
       return static_cast<int>(std::lower_bound(first, last, row) - H_.innerIndexPtr());
     };
-    block_positions_.resize(tets.size() * n_ * n_);
-    for (size_t ti = 0; ti < tets.size(); ++ti)
-      for (long long a = 0; a < n_; ++a)
-        for (long long c = 0; c < n_; ++c)
-          block_positions_[(ti * n_ + a) * n_ + c] =
-              position(domain_[tets[ti] * n_ + c], domain_[tets[ti] * n_ + a]);
+    block_positions_.clear();
+    block_offsets_.clear();
+    for (long long t : tets) {
+      block_offsets_.push_back(block_positions_.size());
+      for (long long a : cols_[t])
+        for (long long c : cols_[t]) block_positions_.push_back(position(c, a));
+    }
     fixed_.makeCompressed();
     fixed_positions_.clear();
     for (int j = 0; j < fixed_.outerSize(); ++j)
@@ -370,11 +377,41 @@ class DomainLeastSquares {
   }
 
  private:
+  // Per tetrahedron: the unknowns its control points depend on, and L_t with b_t = L_t w[cols]
+  // (empty when b_t = w[cols] itself: no hanging control point).
+  void LocalMaps(const C0Parametrization& c0) {
+    const long long nt = grid_.NumTetrahedra();
+    cols_.assign(static_cast<size_t>(nt), {});
+    maps_.assign(static_cast<size_t>(nt), Eigen::MatrixXd());
+    for (long long t = 0; t < nt; ++t) {
+      bool identity = true;
+      for (long long a = 0; a < n_ && identity; ++a) identity = c0.identity[t * n_ + a] >= 0;
+      if (identity) {
+        for (long long a = 0; a < n_; ++a) cols_[t].push_back(c0.identity[t * n_ + a]);
+        continue;
+      }
+      std::vector<long long>& cols = cols_[t];
+      for (long long a = 0; a < n_; ++a)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(c0.P, t * n_ + a); it;
+             ++it)
+          cols.push_back(it.col());
+      std::sort(cols.begin(), cols.end());
+      cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+      Eigen::MatrixXd& L = maps_[t];
+      L = Eigen::MatrixXd::Zero(n_, static_cast<long>(cols.size()));
+      for (long long a = 0; a < n_; ++a)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(c0.P, t * n_ + a); it;
+             ++it)
+          L(a, std::lower_bound(cols.begin(), cols.end(), it.col()) - cols.begin()) = it.value();
+    }
+  }
+
   const BernsteinGrid& grid_;
   int k_;
   long long n_;
-  std::vector<long long> domain_;
-  long long nd_;
+  long long nd_ = 0;
+  std::vector<std::vector<long long>> cols_;
+  std::vector<Eigen::MatrixXd> maps_;
   SparseMatrix P_, fixed_;
   ReusedCholeskySolver cholmod_;
   Eigen::VectorXd last_w_;  // the last solution (the next system's starting point)
@@ -386,6 +423,7 @@ class DomainLeastSquares {
   SparseMatrix H_;
   std::vector<long long> pattern_tets_;
   std::vector<int> block_positions_, fixed_positions_, diagonal_positions_;
+  std::vector<size_t> block_offsets_;  // where each pattern tetrahedron's block starts
 };
 
 // Far-field rows: at the points x of a lattice of spacing h/2 farther than `band` from every

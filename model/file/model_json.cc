@@ -511,7 +511,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
   if (type == NodeType::kColemanFeatures) keys.insert("children");
   if (type == NodeType::kSkeletonOffset) keys.insert("features");  // docs/maths.md CO-2
-  if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
+  if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity", "c0_faces"});
   return keys;
 }
 
