@@ -254,6 +254,8 @@ int main(int argc, char** argv) {
   std::string save_dir;  // write the meshes here when given
   unsigned seed = 1;
   bool true_normals = false;  // generated CAD-like solids: the sampler's normals, not estimated
+  implicitfit::MeshFitOptions adaptive;  // the adaptive-refinement options (MeshFitOptions)
+  int mesh_cells = 128;                  // mesher: box / mesh_cells
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--points"))
       points = std::atoi(argv[i + 1]);
@@ -292,6 +294,22 @@ int main(int argc, char** argv) {
       winding = std::atoi(argv[i + 1]) == 0;
     else if (!std::strcmp(argv[i], "--true-normals"))
       true_normals = std::atoi(argv[i + 1]) != 0;
+    else if (!std::strcmp(argv[i], "--adaptive"))
+      adaptive.adaptive = std::atoi(argv[i + 1]) != 0;
+    else if (!std::strcmp(argv[i], "--max-levels"))
+      adaptive.max_levels = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--sharp"))
+      adaptive.sharp_features = std::atoi(argv[i + 1]) != 0;
+    else if (!std::strcmp(argv[i], "--feature-angle"))
+      adaptive.feature_angle_deg = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--refine-factor"))
+      adaptive.refine_factor = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--min-leaf-spacings"))
+      adaptive.min_leaf_spacings = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--max-unknowns"))
+      adaptive.max_unknowns = std::atoll(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--mesh-cells"))
+      mesh_cells = std::atoi(argv[i + 1]);
   }
   // DIR/<first word of the cloud>-<method tag>.ply, or "" when not asked.
   const auto save_path = [&](const Case& c, const std::string& tag) {
@@ -378,6 +396,13 @@ int main(int argc, char** argv) {
             fo.far_field_relaxation = relaxation;
             fo.far_field_floor = floor;
             fo.sign_guard_samples = guard_samples;
+            fo.adaptive = adaptive.adaptive;
+            fo.max_levels = adaptive.max_levels;
+            fo.sharp_features = adaptive.sharp_features;
+            fo.feature_angle_deg = adaptive.feature_angle_deg;
+            fo.refine_factor = adaptive.refine_factor;
+            fo.min_leaf_spacings = adaptive.min_leaf_spacings;
+            fo.max_unknowns = adaptive.max_unknowns;
             const implicitfit::MeshFitResult r =
                 implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
             out->patches = r.tetrahedra;
@@ -390,7 +415,12 @@ int main(int argc, char** argv) {
             mo.has_box = true;
             mo.box_min = r.grid.BoxMin();
             mo.box_max = r.grid.BoxMax();
-            mo.cell = (mo.box_max - mo.box_min).maxCoeff() / 128;
+            mo.cell = (mo.box_max - mo.box_min).maxCoeff() / mesh_cells;
+            std::fprintf(stderr,
+                         "%s: noise %.3g spacing %.3g threshold %.3g rounds %d levels %d leaves "
+                         "%lld unknowns %lld sharp faces %lld rms %.3g\n",
+                         c.name.c_str(), r.noise, r.spacing, r.residual_threshold, r.rounds,
+                         r.levels, r.leaves, r.unknowns, r.sharp_faces, r.rms);
             mo.num_threads = 2;
             return implicitfit::MeshModel(r.ToModel(), mo).mesh;
           },
