@@ -19,5 +19,6 @@ CommandAction AddMeshCommand(CLI::App& app);
 CommandAction AddReconstructCommand(CLI::App& app);
 CommandAction AddDetectCommand(CLI::App& app);
 CommandAction AddDesignCommand(CLI::App& app);
+CommandAction AddViewCommand(CLI::App& app);
 
 }  // namespace implicitfit

@@ -9,13 +9,14 @@
 
 #include "apps/command.h"
 #include "apps/detect_job.h"
+#include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 
 namespace implicitfit {
 namespace {
 
 struct DetectArgs {
-  std::string cloud, out, labels, ply, report, kinds = "plane,sphere,cylinder,cone,torus";
+  std::string cloud, out, labels, ply, view, report, kinds = "plane,sphere,cylinder,cone,torus";
   double threshold = 0.0;
   int min_points = 0, threads = 0;
   unsigned seed = 1;
@@ -34,6 +35,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
   cmd->add_option("--labels", a->labels,
                   "Per-point labels: primitive index, -1 unassigned, one a line");
   cmd->add_option("--ply", a->ply, "Segmented cloud (PLY with normals, label and residual)");
+  cmd->add_option("--view", a->view, "A page of the segmentation (docs/view.md)");
   cmd->add_option("--report", a->report,
                   "JSON report (scales estimated from the cloud, counts, time)");
   cmd->add_option("--kinds", a->kinds, "Kinds to detect, comma separated (default: all five)");
@@ -60,6 +62,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
       return 1;
     }
     WriteDetection(d, a->out, a->labels, a->ply);
+    if (!a->view.empty()) WriteDetectionView(d, a->view);
     for (const ScenePrimitive& p : d.scene.primitives)
       std::printf("%s %s points %d rms %.6g normals %s\n", p.name.c_str(),
                   NodeTypeName(p.model.nodes()[0].type), p.points, p.rms_distance,

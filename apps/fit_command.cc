@@ -5,11 +5,13 @@
 // and no model file; 2 for invalid usage or input.
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
 #include "apps/fit_job.h"
 #include "apps/fit_model_kinds.h"
+#include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -34,6 +36,8 @@ struct FitArgs {
   double cell = 0.0;
   int continuity = 1;
   std::string grid, child = "plane";
+  std::string view, ply;                 // --view PAGE.html, --ply RESIDUALS.ply
+  std::optional<std::vector<int>> inliers;  // of a primitive fit, for the view and the PLY
 };
 
 }  // namespace
@@ -105,7 +109,9 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--through-edge", a->through_edges,
                   "I,J: the edge between vertices I and J lies on the patch")
       ->group("Bernstein patches");
-  return [a]() {
+  cmd->add_option("--view", a->view, "Also write a page of the result (docs/view.md)");
+  cmd->add_option("--ply", a->ply, "Also write the cloud with each point's residual (PLY)");
+  const auto run = [a]() {
     ModelFitRequest request{a->cloud, a->out,    a->report, a->init,
                             a->kind,  a->degree, a->convex, a->tetrahedron};
     request.through_vertices = a->through_vertices;
@@ -143,7 +149,15 @@ CommandAction AddFitCommand(CLI::App& app) {
     WriteModelFile(model, a->out);
     std::printf("%s\n", ModelToJson(model)["root"].dump().c_str());
     std::printf("%s\n", result.BriefReport().c_str());
+    a->inliers = result.inliers;
     return 0;
+  };
+  return [a, run]() {
+    const int code = run();
+    if (code == 0 && (!a->view.empty() || !a->ply.empty()))
+      WriteFitOutputs(a->cloud, ReadModelFile(a->out), a->inliers ? &*a->inliers : nullptr,
+                      a->view, a->ply);
+    return code;
   };
 }
 

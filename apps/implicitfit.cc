@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   actions["reconstruct"] = AddReconstructCommand(app);
   actions["detect"] = AddDetectCommand(app);
   actions["design"] = AddDesignCommand(app);
+  actions["view"] = AddViewCommand(app);
 
   try {
     app.parse(argc, argv);

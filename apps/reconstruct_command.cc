@@ -8,6 +8,7 @@
 
 #include "apps/command.h"
 #include "apps/reconstruct_job.h"
+#include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -18,7 +19,7 @@ namespace implicitfit {
 namespace {
 
 struct ReconstructArgs {
-  std::string cloud, out, scene, mesh, report;
+  std::string cloud, out, scene, mesh, report, view;
   unsigned seed = 1;
 };
 
@@ -34,6 +35,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
   cmd->add_option("--mesh", a->mesh, "Also write a mesh of the solid (.ply)");
   cmd->add_option("--report", a->report,
                   "Report (JSON): RMS, normal agreement, blends with deviations");
+  cmd->add_option("--view", a->view, "A page of the solid and the cloud (docs/view.md)");
   cmd->add_option("--seed", a->seed, "Random seed");
   return [a]() {
     if (!a->mesh.empty() && (a->mesh.size() < 4 || a->mesh.substr(a->mesh.size() - 4) != ".ply"))
@@ -60,6 +62,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       mo.box_max = hi + 0.1 * (hi - lo);
       WriteMeshPlyFile(MeshModel(r.model, mo).mesh, a->mesh);
     }
+    if (!a->view.empty()) WriteReconstructionView(job, a->cloud, a->view);
     std::cout << report.dump(2) << "\n";
     return 0;
   };

@@ -82,6 +82,7 @@ CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
     CloudDetection detection = DetectCloudFile(cloud_path, options);
     out.cloud = std::move(detection.cloud);
     out.primitives = PrimitivesOfScene(detection.scene);
+    out.labels = detection.result.labels;
     out.detected = true;
   } else {
     const Scene scene = ReadSceneFile(scene_path);

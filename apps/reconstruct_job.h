@@ -23,6 +23,7 @@ struct CloudReconstruction {
   std::string normals;    // how the normals were obtained
   bool detected = false;  // primitives from detect (no scene given)
   std::vector<SolidPrimitive> primitives;
+  std::vector<int> labels;  // per point, detect's (empty with a scene file)
   SolidReconstruction result;
   nlohmann::json report;
 };

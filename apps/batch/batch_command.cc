@@ -20,6 +20,7 @@
 #endif
 #include "apps/batch/batch_progress.h"
 #include "apps/batch/batch_runner.h"
+#include "apps/batch/batch_view.h"
 #include "apps/command.h"
 #include "apps/fit_job.h"
 #include "datasets/io/atomic_file.h"
@@ -33,7 +34,7 @@ struct BatchArgs {
   std::vector<std::string> inputs, manifests, fixes;
   std::string kind, out_dir, shard;
   int jobs = 0;
-  bool resume = false;
+  bool resume = false, view = false;
   unsigned seed = 1;
   double threshold = 0.0;
   std::string estimator = "robust";
@@ -108,6 +109,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
   cmd->add_option("--jobs", a->jobs,
                   "Inputs fitted at once (default: the number of cores; under MPI one per rank)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--view", a->view,
+                "Also write DIR/<name>.view.html per result and DIR/index.html linking them");
   cmd->add_flag("--resume", a->resume,
                 "Skip inputs whose model and successful report are already complete");
   cmd->add_option("--shard", a->shard,
@@ -141,11 +144,14 @@ CommandAction AddBatchCommand(CLI::App& app) {
     if (all.empty()) throw InputError("no cloud files in the given inputs");
     std::vector<BatchInput> inputs = all;
     std::string summary_name = "summary.csv";
+    std::string index_name = "index.html";
     if (!a->shard.empty()) {
       const Shard shard = ParseShard(a->shard);
       inputs = SelectShard(all, shard);
       summary_name =
           "summary-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".csv";
+      index_name =
+          "index-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".html";
     }
     std::error_code ec;
     std::filesystem::create_directories(a->out_dir, ec);
@@ -195,12 +201,16 @@ CommandAction AddBatchCommand(CLI::App& app) {
       const std::vector<BatchOutcome> outcomes = RunBatchOverMpi(inputs, options, on_done);
       if (mpi.rank() != 0) return 0;  // rank 0 reports (mpirun exits with its code)
       progress.Finish();
-      return Finish(outcomes, summary_path, SecondsSince(start));
+      const int code = Finish(outcomes, summary_path, SecondsSince(start));
+      if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
+      return code;
     }
 #endif
     const std::vector<BatchOutcome> outcomes = RunBatch(inputs, options, on_done);
     progress.Finish();
-    return Finish(outcomes, summary_path, SecondsSince(start));
+    const int code = Finish(outcomes, summary_path, SecondsSince(start));
+    if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
+    return code;
   };
 }
 

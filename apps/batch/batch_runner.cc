@@ -194,6 +194,7 @@ void RemoveStaleTemporaries(const std::vector<BatchInput>& inputs, const std::st
     prefixes.insert(in.name + ".report.json.tmp.");
     prefixes.insert(in.name + ".scene.json.tmp.");
     prefixes.insert(in.name + ".labels.txt.tmp.");
+    prefixes.insert(in.name + ".view.html.tmp.");
   }
   std::error_code ec;
   std::vector<fs::path> stale;

@@ -32,9 +32,12 @@ struct CloudFileInfo {
   // Per-point properties present in the file and deliberately not used (colour, intensity,
   // labels, curvature, ...).
   std::vector<std::string> ignored_properties;
-  // Per-point integer labels of labelled text clouds (.xyzl: "x y z label", e.g. the Fit4CAD
-  // primitive number); empty for other formats.
+  // Per-point integer labels: of labelled text clouds (.xyzl: "x y z label", e.g. the Fit4CAD
+  // primitive number) and of PLY/PCD files with a "label" property (e.g. `detect --ply`);
+  // empty otherwise. The fits ignore them (PLY/PCD list them in ignored_properties).
   std::vector<int> labels;
+  // Per-point "residual" property of PLY/PCD files (`detect --ply`, `fit --ply`); empty otherwise.
+  std::vector<double> residuals;
 };
 
 }  // namespace implicitfit

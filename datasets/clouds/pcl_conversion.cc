@@ -80,6 +80,9 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
   for (const pcl::PCLPointField* f : xyz)
     if (!f) throw FileError(path, "no x, y and z fields (a point cloud needs all three)");
   const bool has_normals = nxyz[0] && nxyz[1] && nxyz[2];
+  // Kept beside the points for viewers (view/): a segmentation's labels and residuals.
+  const pcl::PCLPointField* label = FindField(blob, "label");
+  const pcl::PCLPointField* residual = FindField(blob, "residual");
   // The readers have already checked the sizes against the header; this guards the offsets.
   for (const pcl::PCLPointField& f : blob.fields) {
     if (FieldSize(f.datatype) == 0)
@@ -119,6 +122,11 @@ PointCloud FromPclCloud(const pcl::PCLPointCloud2& blob, const std::string& path
       continue;
     }
     cloud.points.push_back(p);
+    if (label) {
+      const double l = FieldValue(record + label->offset, label->datatype);
+      out.labels.push_back(std::isfinite(l) && std::abs(l) < 2e9 ? static_cast<int>(l) : -1);
+    }
+    if (residual) out.residuals.push_back(FieldValue(record + residual->offset, residual->datatype));
     if (has_normals) {
       Eigen::Vector3d n;
       for (int k = 0; k < 3; ++k) n[k] = FieldValue(record + nxyz[k]->offset, nxyz[k]->datatype);
