@@ -417,9 +417,9 @@ int main(int argc, char** argv) {
             mo.box_max = r.grid.BoxMax();
             mo.cell = (mo.box_max - mo.box_min).maxCoeff() / mesh_cells;
             std::fprintf(stderr,
-                         "%s: noise %.3g spacing %.3g threshold %.3g rounds %d levels %d leaves "
+                         "%s: noise %.3g spacing %.3g threshold %.3g rounds %d (%d rejected) levels %d leaves "
                          "%lld unknowns %lld sharp faces %lld rms %.3g\n",
-                         c.name.c_str(), r.noise, r.spacing, r.residual_threshold, r.rounds,
+                         c.name.c_str(), r.noise, r.spacing, r.residual_threshold, r.rounds, r.rejected_rounds,
                          r.levels, r.leaves, r.unknowns, r.sharp_faces, r.rms);
             mo.num_threads = 2;
             return implicitfit::MeshModel(r.ToModel(), mo).mesh;

@@ -141,8 +141,15 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
     start.far_weight = fit.far_weight;
     MeshFitResult next = FitBernsteinMeshOnGrid(points, normals, options, finer, &start);
     ++rounds;
-    if (!next.success) break;
+    // A round is kept only when it lowers the RMS residual: on the 20 000-point chamfered block
+    // the refined round ended above its start (0.0164 against 0.0091, the projection onto the
+    // C1 space of the refined grid moving the penalised solution), so refining stops there.
+    if (!next.success || !(next.rms < fit.rms)) {
+      ++fit.rejected_rounds;
+      break;
+    }
     next.iterations += fit.iterations;
+    next.rejected_rounds = fit.rejected_rounds;
     next.initial_rms = fit.initial_rms;
     fit = std::move(next);
   }

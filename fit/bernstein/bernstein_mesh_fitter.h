@@ -166,6 +166,7 @@ struct MeshFitResult {
   double noise = 0.0, spacing = 0.0, residual_threshold = 0.0;
   int rounds = 0, levels = 0;
   long long leaves = 0, unknowns = 0, sharp_faces = 0;
+  int rejected_rounds = 0;  // refined rounds dropped because they did not lower the RMS
   Model ToModel() const;
 };
 
