@@ -18,6 +18,8 @@
 
 #include "datasets/generators/cad_solids.h"
 #include "datasets/generators/model_sampler.h"
+#include "fit/bernstein/continuity_projection.h"
+#include "model/bernstein/bernstein_conversion.h"
 #include "model/bernstein/bernstein_mesh.h"
 #include "model/bernstein/bernstein_patch.h"
 #include "model/bernstein/grid_refinement.h"
@@ -128,6 +130,40 @@ TEST(AdaptiveMeshFitter, CreaseLeavesHoldTheEdgeOfTwoPlanes) {
   }
 }
 
+// A global quadric is C-infinity: on a refined grid (hanging faces, sharp or not) its control
+// points already lie in the continuity space, so the exact projection must leave them unchanged.
+TEST(AdaptiveMeshFitter, ProjectionKeepsAGlobalQuadricOnARefinedGrid) {
+  const int k = 3;
+  CartesianQuadric q;
+  q.A << 1.0, 0.2, -0.1, 0.2, 0.5, 0.3, -0.1, 0.3, 0.8;
+  q.b << 0.1, -0.2, 0.3;
+  q.c = -0.7;
+  BernsteinGrid grid = Grid(3, 1.0);
+  std::vector<bool> split(static_cast<size_t>(grid.NumLeaves()), false);
+  split[13] = split[0] = true;
+  split = BalanceSplits(grid.cells, grid.refinement, split);
+  grid.refinement = SplitLeaves(grid.cells, grid.refinement, split);
+  const long long n = NumBernsteinControlPoints(k);
+  for (int sharp = 0; sharp < 2; ++sharp) {
+    grid.sharp.clear();
+    if (sharp) {
+      grid.sharp.assign(static_cast<size_t>(grid.NumTetrahedra()), 0);
+      for (int p = 0; p < 6; ++p) grid.sharp[6 * 3 + p] = 0xF;
+    }
+    std::vector<double> b(static_cast<size_t>(grid.NumTetrahedra() * n));
+    for (long long t = 0; t < grid.NumTetrahedra(); ++t) {
+      const std::vector<double> bt = QuadricToBernstein(q, grid.TetrahedronOf(t), k);
+      std::copy(bt.begin(), bt.end(), b.begin() + t * n);
+    }
+    std::vector<double> projected = b;
+    const ContinuityProjector projector(grid, k, 1);
+    projector.Project(&projected);
+    double worst = 0;
+    for (size_t i = 0; i < b.size(); ++i) worst = std::max(worst, std::abs(projected[i] - b[i]));
+    EXPECT_LE(worst, 1e-9) << "sharp " << sharp;
+  }
+}
+
 TEST(AdaptiveMeshFitter, RefinementLowersTheResidualOnAChamferedBlock) {
   const CadSolid solid = ChamferedBlockSolid();
   SampleOptions so;
@@ -143,6 +179,11 @@ TEST(AdaptiveMeshFitter, RefinementLowersTheResidualOnAChamferedBlock) {
   const MeshFitResult uniform = FitBernsteinMesh(cloud.cloud.points, cloud.cloud.normals, o);
   ASSERT_TRUE(uniform.success) << uniform.message;
   o.adaptive = true;
+  o.max_levels = 0;  // the base round only: the same space as the uniform grid, the same fit
+  const MeshFitResult base = FitBernsteinMesh(cloud.cloud.points, cloud.cloud.normals, o);
+  ASSERT_TRUE(base.success) << base.message;
+  EXPECT_NEAR(base.rms, uniform.rms, 1e-3 * uniform.rms);
+  std::printf("base round rms %.6g, uniform rms %.6g\n", base.rms, uniform.rms);
   o.max_levels = 1;
   const MeshFitResult refined = FitBernsteinMesh(cloud.cloud.points, cloud.cloud.normals, o);
   ASSERT_TRUE(refined.success) << refined.message;
