@@ -37,9 +37,15 @@
 
 #include "bench/mesh_judging.h"
 #include "datasets/clouds/cloud_file.h"
+#include "datasets/generators/cad_solids.h"
+#include "datasets/generators/generated_solids.h"
+#include "datasets/normals/normal_estimation.h"
 #include "datasets/meshing/model_mesher.h"
 #include "datasets/generators/model_sampler.h"
 #include "fit/bernstein/bernstein_mesh_fitter.h"
+#ifdef IMPLICITFIT_HAVE_CGAL_POISSON
+#include "bench/cgal_poisson.h"
+#endif
 
 namespace {
 
@@ -147,7 +153,8 @@ bool AddScan(const std::string& path, const std::string& name, bool convex,
     std::printf("(skipped %s: %s is absent)\n", name.c_str(), path.c_str());
     return false;
   }
-  const implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(path);
+  implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(path);
+  if (!cloud.has_normals()) implicitfit::EnsureOrientedNormals(&cloud);  // the user's path
   Case c;
   c.name = name;
   c.points = cloud.points;
@@ -180,6 +187,59 @@ void AddGenerated(const std::string& name, const implicitfit::Model& truth, bool
   cases->push_back(std::move(c));
 }
 
+// A generated CAD-like solid (datasets/generators/cad_solids.h, generated_solids.h): `points`
+// with noise 0.1% of the size along the normal, normals estimated from the points (PCA + MST,
+// datasets/normals/normal_estimation.h: what a user has) unless true_normals; judged against the
+// model and 20 000 noise-free points.
+void AddSolid(const std::string& name, const implicitfit::Model& truth, const Vec& box_min,
+              const Vec& box_max, int points, unsigned seed, bool true_normals,
+              std::vector<Case>* cases) {
+  implicitfit::SampleOptions so;
+  so.count = points;
+  so.seed = seed;
+  so.has_box = true;
+  so.box_min = box_min;
+  so.box_max = box_max;
+  implicitfit::SampleOptions clean = so;
+  clean.count = 20000;
+  clean.seed = seed + 1000;
+  const implicitfit::SampledCloud truth_cloud = implicitfit::SampleModel(truth, clean);
+  const double size = BoxSize(truth_cloud.cloud.points);
+  so.noise = 0.001 * size;
+  implicitfit::PointCloud cloud = implicitfit::SampleModel(truth, so).cloud;
+  if (!true_normals) {
+    cloud.normals.clear();
+    implicitfit::EnsureOrientedNormals(&cloud);
+  }
+  Case c;
+  c.name = name + (true_normals ? " (true normals)" : "");
+  c.points = cloud.points;
+  c.normals = cloud.normals;
+  c.truth = bench::ModelTruth(truth, truth_cloud.cloud.points);
+  c.size = size;
+  cases->push_back(std::move(c));
+}
+
+// A Fit4CAD part (../shared/data/fit4cad, GPL-3, read in place): noise-free points without
+// normals (estimated and oriented as for a user), judged against its points.
+void AddFit4Cad(const std::string& part, std::vector<Case>* cases) {
+  const std::string path =
+      std::string(IMPLICITFIT_SHARED_DATA) + "/fit4cad/fit4cad_" + part + ".xyzl";
+  if (!std::ifstream(path).good()) {
+    std::printf("(skipped Fit4CAD %s: %s is absent)\n", part.c_str(), path.c_str());
+    return;
+  }
+  implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(path);
+  implicitfit::EnsureOrientedNormals(&cloud);
+  Case c;
+  c.name = "Fit4CAD " + part;
+  c.points = cloud.points;
+  c.normals = cloud.normals;
+  c.truth = bench::CloudTruth(c.points, c.normals);
+  c.size = BoxSize(c.points);
+  cases->push_back(std::move(c));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -193,6 +253,9 @@ int main(int argc, char** argv) {
   std::string only;      // run only the clouds whose name contains this
   std::string save_dir;  // write the meshes here when given
   unsigned seed = 1;
+  bool true_normals = false;  // generated CAD-like solids: the sampler's normals, not estimated
+  implicitfit::MeshFitOptions adaptive;  // the adaptive-refinement options (MeshFitOptions)
+  int mesh_cells = 128;                  // mesher: box / mesh_cells
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--points"))
       points = std::atoi(argv[i + 1]);
@@ -229,6 +292,24 @@ int main(int argc, char** argv) {
       save_dir = argv[i + 1];
     else if (!std::strcmp(argv[i], "--tangent-plane-signs"))
       winding = std::atoi(argv[i + 1]) == 0;
+    else if (!std::strcmp(argv[i], "--true-normals"))
+      true_normals = std::atoi(argv[i + 1]) != 0;
+    else if (!std::strcmp(argv[i], "--adaptive"))
+      adaptive.adaptive = std::atoi(argv[i + 1]) != 0;
+    else if (!std::strcmp(argv[i], "--max-levels"))
+      adaptive.max_levels = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--sharp"))
+      adaptive.sharp_features = std::atoi(argv[i + 1]) != 0;
+    else if (!std::strcmp(argv[i], "--feature-angle"))
+      adaptive.feature_angle_deg = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--refine-factor"))
+      adaptive.refine_factor = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--min-leaf-spacings"))
+      adaptive.min_leaf_spacings = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--max-unknowns"))
+      adaptive.max_unknowns = std::atoll(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--mesh-cells"))
+      mesh_cells = std::atoi(argv[i + 1]);
   }
   // DIR/<first word of the cloud>-<method tag>.ply, or "" when not asked.
   const auto save_path = [&](const Case& c, const std::string& tag) {
@@ -237,28 +318,46 @@ int main(int argc, char** argv) {
                : save_dir + "/" + c.name.substr(0, c.name.find(' ')) + "-" + tag + ".ply";
   };
   std::vector<Case> cases;
-  AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_kitten.xyz", "kitten (scan)", false,
-          &cases);
-  AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_oni.pwn", "oni (scan)", false, &cases);
-  AddScan(std::string(IMPLICITFIT_BUNDLED_DATA) + "/cgal_sphere_single.xyz", "sphere (scan)", true,
-          &cases);
-  {
+  // (Clouds whose name does not contain --only are not even made: sampling, normals.)
+  const auto wanted = [&](const std::string& name) { return name.find(only) != std::string::npos; };
+  if (wanted("kitten"))
+    AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_kitten.xyz", "kitten (scan)", false,
+            &cases);
+  if (wanted("oni"))
+    AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_oni.pwn", "oni (scan)", false,
+            &cases);
+  if (wanted("sphere (scan)"))
+    AddScan(std::string(IMPLICITFIT_BUNDLED_DATA) + "/cgal_sphere_single.xyz", "sphere (scan)",
+            true, &cases);
+  if (wanted("ellipsoid")) {
     implicitfit::Model m;
     m.AddPrimitive(implicitfit::NodeType::kEllipsoid, {0, 0, 0, 1.0, 0.7, 0.5, 1, 0, 0, 0, 1, 0});
     AddGenerated("ellipsoid", m, true, points, seed, &cases);
   }
-  {
+  if (wanted("torus")) {
     implicitfit::Model m;
     m.AddPrimitive(implicitfit::NodeType::kTorus, {0, 0, 0, 0, 0, 1, 1.0, 0.35});
     AddGenerated("torus", m, false, points, seed, &cases);
   }
-  {
+  if (wanted("union of two spheres")) {
     implicitfit::Model m;
     const int a = m.AddPrimitive(implicitfit::NodeType::kSphere, {-0.4, 0, 0, 0.6});
     const int b = m.AddPrimitive(implicitfit::NodeType::kSphere, {0.4, 0, 0, 0.6});
     m.AddOperator(implicitfit::NodeType::kUnion, {a, b}, 0.1, 0.1, 3);
     AddGenerated("union of two spheres", m, false, points, seed, &cases);
   }
+  if (wanted("Stanford bunny"))
+    AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/stanford/stanford_bunny_bun000_rangescan.ply",
+            "Stanford bunny bun000 (range scan)", false, &cases);
+  for (const implicitfit::CadSolid& s : implicitfit::AllCadSolids())
+    if (wanted(s.name))
+      AddSolid(s.name, s.truth, s.box_min, s.box_max, points, seed, true_normals, &cases);
+  for (const implicitfit::GeneratedSolid& s : implicitfit::AllGeneratedSolids())
+    if (wanted(s.name))
+      AddSolid(s.name, s.truth, s.box_min, s.box_max, points, seed, true_normals, &cases);
+  for (const char* part : {"test_PC21", "test_PC33", "test_PC34", "test_PC35", "train_PC124",
+                           "train_PC131", "train_PC145", "train_PC155"})
+    if (wanted(std::string("Fit4CAD ") + part)) AddFit4Cad(part, &cases);
   std::printf("parent resident memory before the methods: %.0f MB\n\n", PeakRssMb());
   std::printf(
       "| cloud | method | Chamfer (/ size) | mesh->truth / truth->mesh | Hausdorff (/ size) | "
@@ -297,6 +396,13 @@ int main(int argc, char** argv) {
             fo.far_field_relaxation = relaxation;
             fo.far_field_floor = floor;
             fo.sign_guard_samples = guard_samples;
+            fo.adaptive = adaptive.adaptive;
+            fo.max_levels = adaptive.max_levels;
+            fo.sharp_features = adaptive.sharp_features;
+            fo.feature_angle_deg = adaptive.feature_angle_deg;
+            fo.refine_factor = adaptive.refine_factor;
+            fo.min_leaf_spacings = adaptive.min_leaf_spacings;
+            fo.max_unknowns = adaptive.max_unknowns;
             const implicitfit::MeshFitResult r =
                 implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
             out->patches = r.tetrahedra;
@@ -309,7 +415,12 @@ int main(int argc, char** argv) {
             mo.has_box = true;
             mo.box_min = r.grid.BoxMin();
             mo.box_max = r.grid.BoxMax();
-            mo.cell = (mo.box_max - mo.box_min).maxCoeff() / 128;
+            mo.cell = (mo.box_max - mo.box_min).maxCoeff() / mesh_cells;
+            std::fprintf(stderr,
+                         "%s: noise %.3g spacing %.3g threshold %.3g rounds %d (%d rejected) levels %d leaves "
+                         "%lld unknowns %lld sharp faces %lld rms %.3g\n",
+                         c.name.c_str(), r.noise, r.spacing, r.residual_threshold, r.rounds, r.rejected_rounds,
+                         r.levels, r.leaves, r.unknowns, r.sharp_faces, r.rms);
             mo.num_threads = 2;
             return implicitfit::MeshModel(r.ToModel(), mo).mesh;
           },
@@ -332,6 +443,15 @@ int main(int argc, char** argv) {
           save_path(c, "poisson" + std::to_string(depth)));
       Row(c, "PCL Poisson depth " + std::to_string(depth), o);
     }
+#ifdef IMPLICITFIT_HAVE_CGAL_POISSON
+    {
+      const Outcome o = RunIsolated(
+          c, seed,
+          [&](Outcome*) { return implicitfit_bench::CgalPoisson(c.points, c.normals).mesh; },
+          save_path(c, "cgal-poisson"));
+      Row(c, "CGAL Poisson", o);
+    }
+#endif
     const Outcome o = RunIsolated(
         c, seed, [&](Outcome*) { return bench::HoppeMesh(c.points, c.normals, 100); },
         save_path(c, "hoppe"));

@@ -374,6 +374,10 @@ int Model::AddBernsteinMesh(int degree, const BernsteinGrid& grid, int continuit
     throw std::invalid_argument("AddBernsteinMesh: the grid needs a finite origin and cell > 0");
   for (int c : grid.cells)
     if (c < 1) throw std::invalid_argument("AddBernsteinMesh: every cells entry must be >= 1");
+  if (grid.refined() && static_cast<long long>(grid.refinement.root.size()) != grid.NumCubes())
+    throw std::invalid_argument("AddBernsteinMesh: the refinement is not of this grid's cubes");
+  if (!grid.sharp.empty() && static_cast<long long>(grid.sharp.size()) != grid.NumTetrahedra())
+    throw std::invalid_argument("AddBernsteinMesh: sharp flags must be one per tetrahedron");
   const long long count = grid.NumTetrahedra() * NumBernsteinControlPoints(degree);
   if (static_cast<long long>(control_points.size()) != count)
     throw std::invalid_argument("AddBernsteinMesh: " + std::to_string(grid.NumTetrahedra()) +

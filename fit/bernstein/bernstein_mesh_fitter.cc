@@ -12,8 +12,11 @@
 #include <memory>
 #include <optional>
 
+#include "fit/bernstein/adaptive_mesh_fitter.h"
 #include "fit/bernstein/continuity_projection.h"
+#include "fit/bernstein/domain_least_squares.h"
 #include "fit/bernstein/empty_space_sign_guard.h"
+#include "fit/bernstein/far_field_rows.h"
 #include "fit/bernstein/patch_fitter.h"
 #include "fit/bernstein/reused_cholesky.h"
 #include "fit/bernstein/winding_number.h"
@@ -27,18 +30,6 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 using SparseMatrix = Eigen::SparseMatrix<double>;
-
-// B^k_lambda(tau) for every lambda, docs/design.md order.
-void BasisValues(int k, const double* tau, double* out) {
-  static thread_local std::vector<double> unit;
-  const long long n = NumBernsteinControlPoints(k);
-  unit.assign(static_cast<size_t>(n), 0.0);
-  for (long long j = 0; j < n; ++j) {
-    unit[j] = 1.0;
-    out[j] = BernsteinPatch::EvaluateBarycentric(k, unit.data(), tau);
-    unit[j] = 0.0;
-  }
-}
 
 // Geometric and normal residuals of one point in its tetrahedron (as PatchPointResidual).
 template <int N>
@@ -176,301 +167,6 @@ std::vector<bool> EmptyFaceRows(const ContinuityRows& c2, const PointData& data)
   return keep;
 }
 
-// Weighted linear least squares in the global domain points w (b = P w: C0 exact,
-// model/bernstein/bernstein_mesh_continuity.h) with the C1 rows as weighted equations (continuity_weight)
-// and the soft C2 rows on faces of empty tetrahedra (smoothing_weight), solved by sparse
-// Cholesky of the normal equations (steps 1 and 2 of the header).
-class DomainLeastSquares {
- public:
-  DomainLeastSquares(const BernsteinGrid& grid, int k, int continuity,
-                     const MeshFitOptions& options, const ContinuityRows& c2,
-                     const std::vector<bool>& c2_keep)
-      : grid_(grid),
-        k_(k),
-        n_(NumBernsteinControlPoints(k)),
-        domain_(DomainPointIndices(grid, k)),
-        nd_(NumDomainPoints(grid, k)),
-        basis_(static_cast<size_t>(n_)) {
-    P_.resize(static_cast<long>(domain_.size()), nd_);
-    std::vector<Eigen::Triplet<double>> tp;
-    for (size_t i = 0; i < domain_.size(); ++i)
-      tp.emplace_back(static_cast<long>(i), domain_[i], 1.0);
-    P_.setFromTriplets(tp.begin(), tp.end());
-    fixed_.resize(nd_, nd_);
-    if (continuity == 1) {
-      const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1);
-      const SparseMatrix G = SparseMatrix(c1.C) * P_;
-      fixed_ +=
-          options.continuity_weight * options.continuity_weight * SparseMatrix(G.transpose()) * G;
-    }
-    std::vector<Eigen::Triplet<double>> ts;
-    long long r = 0;
-    for (int row = 0; row < c2.C.rows(); ++row) {
-      if (!c2_keep[row]) continue;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(c2.C, row); it; ++it)
-        ts.emplace_back(r, it.col(), it.value());
-      ++r;
-    }
-    SparseMatrix S(r, c2.C.cols());
-    S.setFromTriplets(ts.begin(), ts.end());
-    const SparseMatrix SP = S * P_;
-    fixed_ +=
-        options.smoothing_weight * options.smoothing_weight * SparseMatrix(SP.transpose()) * SP;
-  }
-
-  // The row weight (f(x) - target).
-  void AddValueRow(const Vec& x, double weight, double target) {
-    double tau[4];
-    const long long t = grid_.Locate(x.data(), tau);
-    BasisValues(k_, tau, basis_.data());
-    double* row = NewRow(t, weight * target);
-    for (long long j = 0; j < n_; ++j) row[j] = weight * basis_[j];
-  }
-
-  // Rows weight_r (a_r f(x) + c_r . grad f(x) - target_r) at one point x: linear functionals of
-  // f's value and gradient (the gradient rows below; the exact linearisations of f/|grad f| and
-  // grad f/|grad f| in RefineLinearised); grad B_j by the patch's derivatives of unit control
-  // vectors, computed once for all the rows.
-  struct PointRow {
-    double weight, a;
-    Vec c;
-    double target;
-  };
-  void AddPointRows(const Vec& x, const PointRow* rows, int count) {
-    double tau[4];
-    const long long t = grid_.Locate(x.data(), tau);
-    const Tetrahedron tet = grid_.TetrahedronOf(t);
-    BasisValues(k_, tau, basis_.data());
-    for (int r = 0; r < count; ++r) NewRow(t, rows[r].weight * rows[r].target);
-    unit_.assign(static_cast<size_t>(n_), 0.0);
-    for (long long j = 0; j < n_; ++j) {
-      unit_[j] = 1.0;
-      Vec g;
-      BernsteinPatch::Derivatives(k_, tet, unit_.data(), x.data(), &g);
-      unit_[j] = 0.0;
-      for (int r = 0; r < count; ++r)
-        coefficients_[(rows_ - count + r) * n_ + j] =
-            rows[r].weight * (rows[r].a * basis_[j] + rows[r].c.dot(g));
-    }
-  }
-
-  // The three rows weight (grad f(x) - target).
-  void AddGradientRows(const Vec& x, double weight, const Vec& target) {
-    PointRow rows[3];
-    for (int c = 0; c < 3; ++c) rows[c] = {weight, 0.0, Vec::Unit(c), target[c]};
-    AddPointRows(x, rows, 3);
-  }
-
-  // Solves with the rows added since the last Solve (then drops them); returns b = P w.
-  // Assembly. Every row lies in one tetrahedron, so A^T A is a sum of dense n x n blocks
-  // R_t^T R_t (R_t: the rows of tetrahedron t), each computed with dense products and added
-  // into H's value array at positions found once (the rows fall in the same tetrahedra every
-  // iteration); H = those blocks + the fixed continuity and C2 part + a tiny ridge.
-  std::vector<double> Solve() {
-    std::vector<long long> order(static_cast<size_t>(rows_));
-    for (long long r = 0; r < rows_; ++r) order[r] = r;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](long long a, long long b) { return row_tet_[a] < row_tet_[b]; });
-    std::vector<long long> tets;
-    for (long long r : order)
-      if (tets.empty() || tets.back() != row_tet_[r]) tets.push_back(row_tet_[r]);
-    if (tets != pattern_tets_) BuildPattern(tets);
-    Eigen::VectorXd values = Eigen::VectorXd::Zero(H_.nonZeros());
-    for (size_t i = 0; i < fixed_positions_.size(); ++i)
-      values[fixed_positions_[i]] += fixed_.valuePtr()[i];
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(nd_);
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    RowMajor R;
-    Eigen::VectorXd y;
-    size_t next = 0;
-    for (size_t ti = 0; ti < tets.size(); ++ti) {
-      const long long t = tets[ti];
-      size_t end = next;
-      while (end < order.size() && row_tet_[order[end]] == t) ++end;
-      R.resize(static_cast<long>(end - next), n_);
-      y.resize(static_cast<long>(end - next));
-      for (size_t i = next; i < end; ++i) {
-        R.row(static_cast<long>(i - next)) =
-            Eigen::Map<const Eigen::RowVectorXd>(&coefficients_[order[i] * n_], n_);
-        y[static_cast<long>(i - next)] = rhs_[order[i]];
-      }
-      next = end;
-      const Eigen::MatrixXd block = R.transpose() * R;
-      const Eigen::VectorXd local = R.transpose() * y;
-      const int* pos = &block_positions_[ti * n_ * n_];
-      for (long long a = 0; a < n_; ++a) {
-        g[domain_[t * n_ + a]] += local[a];
-        for (long long c = 0; c < n_; ++c) values[pos[a * n_ + c]] += block(c, a);
-      }
-    }
-    // A tiny ridge keeps the system definite where nothing else reaches (far corners).
-    double largest = 1.0;
-    for (int d : diagonal_positions_) largest = std::max(largest, values[d]);
-    for (int d : diagonal_positions_) values[d] += 1e-10 * largest;
-    std::copy(values.data(), values.data() + values.size(), H_.valuePtr());
-    // CHOLMOD's supernodal Cholesky (SuiteSparse, linked for the projection already) is an order
-    // of magnitude faster than Eigen's simplicial one on these 3-D grids. The refinement's systems
-    // share one sparsity pattern (the same points, offsets and far-field points every
-    // iteration) and differ only in row weights, so the last factor preconditions conjugate
-    // gradients on the next system and a new factorisation is made only when they do not
-    // converge (fit/bernstein/reused_cholesky.h).
-    last_w_ = cholmod_.Solve(H_, g, last_w_);
-    const Eigen::VectorXd b = P_ * last_w_;
-    row_tet_.clear();
-    coefficients_.clear();
-    rhs_.clear();
-    rows_ = 0;
-    return std::vector<double>(b.data(), b.data() + b.size());
-  }
-
- private:
-  // Appends a row in tetrahedron t with right-hand side rhs; returns its n coefficients.
-  double* NewRow(long long t, double rhs) {
-    row_tet_.push_back(t);
-    rhs_.push_back(rhs);
-    coefficients_.resize(static_cast<size_t>((rows_ + 1) * n_));
-    return &coefficients_[rows_++ * n_];
-  }
-
-  // H's pattern: the fixed part plus a dense block on the domain points of every tetrahedron
-  // that holds rows; the value positions of both and of the diagonal.
-  void BuildPattern(const std::vector<long long>& tets) {
-    std::vector<Eigen::Triplet<double>> ts;
-    ts.reserve(tets.size() * n_ * n_);
-    for (long long t : tets)
-      for (long long a = 0; a < n_; ++a)
-        for (long long c = 0; c < n_; ++c)
-          ts.emplace_back(domain_[t * n_ + c], domain_[t * n_ + a], 1.0);
-    for (long long i = 0; i < nd_; ++i) ts.emplace_back(i, i, 1.0);
-    for (int j = 0; j < fixed_.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(fixed_, j); it; ++it)
-        ts.emplace_back(it.row(), it.col(), 1.0);
-    H_.resize(nd_, nd_);
-    H_.setFromTriplets(ts.begin(), ts.end());
-    H_.makeCompressed();
-    auto position = [&](long long row, long long col) {
-      const auto* first = H_.innerIndexPtr() + H_.outerIndexPtr()[col];
-      const auto* last = H_.innerIndexPtr() + H_.outerIndexPtr()[col + 1];
-      return static_cast<int>(std::lower_bound(first, last, row) - H_.innerIndexPtr());
-    };
-    block_positions_.resize(tets.size() * n_ * n_);
-    for (size_t ti = 0; ti < tets.size(); ++ti)
-      for (long long a = 0; a < n_; ++a)
-        for (long long c = 0; c < n_; ++c)
-          block_positions_[(ti * n_ + a) * n_ + c] =
-              position(domain_[tets[ti] * n_ + c], domain_[tets[ti] * n_ + a]);
-    fixed_.makeCompressed();
-    fixed_positions_.clear();
-    for (int j = 0; j < fixed_.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(fixed_, j); it; ++it)
-        fixed_positions_.push_back(position(it.row(), it.col()));
-    diagonal_positions_.resize(static_cast<size_t>(nd_));
-    for (long long i = 0; i < nd_; ++i) diagonal_positions_[i] = position(i, i);
-    pattern_tets_ = tets;
-  }
-
- private:
-  const BernsteinGrid& grid_;
-  int k_;
-  long long n_;
-  std::vector<long long> domain_;
-  long long nd_;
-  SparseMatrix P_, fixed_;
-  ReusedCholeskySolver cholmod_;
-  Eigen::VectorXd last_w_;  // the last solution (the next system's starting point)
-  // Rows added since the last Solve: tetrahedron, n coefficients each, right-hand side.
-  std::vector<long long> row_tet_;
-  std::vector<double> coefficients_, rhs_, basis_, unit_;
-  long long rows_ = 0;
-  // H's pattern (BuildPattern) and where the blocks, the fixed part and the diagonal go in it.
-  SparseMatrix H_;
-  std::vector<long long> pattern_tets_;
-  std::vector<int> block_positions_, fixed_positions_, diagonal_positions_;
-};
-
-// Far-field rows: at the points x of a lattice of spacing h/2 farther than `band` from every
-// input point, the target f(x) = (x - p) . n_p with p the nearest input point (Hoppe's signed
-// tangent-plane distance), so that f keeps the outside/inside sign of the closest data away
-// from the surface and no spurious sheet crosses empty cells; on the faces of the grid box the
-// target is +|x - p| instead (outside), so that f > 0 on the whole box boundary and the zero set
-// closes inside the box (an open scan, e.g. oni's unscanned base, is capped instead of leaving
-// the box). A lattice point x whose direction from p makes more than acos(beside_cos) (60
-// degrees) with n_p lies beside the data, beyond an open rim, rather than above or below it: the
-// tangent-plane sign says nothing there, and the target is +|x - p| (outside) too, so that the
-// cap of an open scan closes near its rim instead of at the box (oni: Chamfer 0.0227 -> 0.0209).
-// With `winding` (the default, MeshFitOptions::far_field_winding), the sign of a row off the
-// box comes from the generalised winding number w of the cloud instead (fit/bernstein/winding_number.h:
-// inside where w > 1/2), and its magnitude is at most |w - 1/2| / |grad w|, the first-order
-// distance to the level w = 1/2: the tangent-plane test says nothing beyond an open rim and the
-// "beside" rule capped oni's unscanned base where the data stopped sideways, 0.06 below the
-// rim; w's level 1/2 spans the rim (flat for a planar rim) and the magnitude bound makes the
-// targets one consistent signed distance across it, so the cap follows that level instead of
-// wobbling between lattice points (see the header for the figures).
-// Row weight (not on the box): min(1, (distance to the data / (ramp h))^ramp_power), see the
-// header. Nearest point by brute force (lattice x points: below 10^9 operations for the grids
-// used here; fit/ has no spatial index).
-struct FarFieldRow {
-  Vec x;
-  double target;
-  bool on_box = false;
-  double weight = 1.0;  // relative weight (far_field_ramp)
-};
-
-std::vector<FarFieldRow> FarFieldRows(const BernsteinGrid& grid, const std::vector<Vec>& points,
-                                      const std::vector<Vec>& normals, double band,
-                                      double beside_cos, double ramp, double ramp_power,
-                                      const WindingNumber* winding) {
-  std::vector<FarFieldRow> rows;
-  const int per = 2;  // samples per cube edge
-  const double step = grid.cell / per;
-  const int m[3] = {per * grid.cells[0], per * grid.cells[1], per * grid.cells[2]};
-  for (int i = 0; i <= m[0]; ++i)
-    for (int j = 0; j <= m[1]; ++j)
-      for (int l = 0; l <= m[2]; ++l) {
-        const Vec c = grid.origin + step * Vec(i, j, l);
-        size_t best = 0;
-        double best_d2 = std::numeric_limits<double>::infinity();
-        for (size_t q = 0; q < points.size(); ++q) {
-          const double d2 = (points[q] - c).squaredNorm();
-          if (d2 < best_d2) best_d2 = d2, best = q;
-        }
-        if (best_d2 <= band * band) continue;
-        const bool on_box = i == 0 || j == 0 || l == 0 || i == m[0] || j == m[1] || l == m[2];
-        const double hoppe = (c - points[best]).dot(normals[best]);
-        const bool beside = std::abs(hoppe) < beside_cos * std::sqrt(best_d2);
-        const double distance = std::sqrt(best_d2);
-        const double weight =
-            ramp > 0 && !on_box ? std::min(1.0, std::pow(distance / (ramp * grid.cell), ramp_power))
-                                : 1.0;
-        double target = on_box || beside ? distance : hoppe;
-        if (winding && !on_box) {
-          Vec grad_w;
-          const double w = winding->Evaluate(c, &grad_w);
-          const bool inside = w > 0.5;
-          const bool agrees = !beside && (hoppe < 0) == inside;
-          const double magnitude = std::min(agrees ? std::abs(hoppe) : distance,
-                                            std::abs(w - 0.5) / std::max(grad_w.norm(), 1e-300));
-          target = inside ? -magnitude : magnitude;
-        }
-        rows.push_back({c, target, on_box, weight});
-      }
-  return rows;
-}
-
-// Far-field points where f has the opposite sign of the row's target (or is 0).
-long long FarFieldSignErrors(const BernsteinGrid& grid, int k, const std::vector<double>& b,
-                             const std::vector<FarFieldRow>& rows, bool box_only = false) {
-  const long long n = NumBernsteinControlPoints(k);
-  long long errors = 0;
-  for (const FarFieldRow& r : rows) {
-    if (box_only && !r.on_box) continue;
-    double tau[4];
-    const long long t = grid.Locate(r.x.data(), tau);
-    errors += BernsteinPatch::EvaluateBarycentric(k, b.data() + t * n, tau) * r.target <= 0;
-  }
-  return errors;
-}
-
 void AddFarFieldRows(const std::vector<FarFieldRow>& rows, double weight,
                      DomainLeastSquares* solver) {
   for (const FarFieldRow& r : rows) solver->AddValueRow(r.x, weight * r.weight, r.target);
@@ -521,8 +217,9 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
                                      const std::vector<Vec>& points,
                                      const std::vector<Vec>& normals, double d,
                                      const MeshFitOptions& options, std::vector<double> b,
-                                     const std::vector<FarFieldRow>& far, double far_weight,
+                                     const std::vector<FarFieldRow>& far, double* far_weight_io,
                                      DomainLeastSquares* solver, int* iterations) {
+  double far_weight = *far_weight_io;
   const long long n = NumBernsteinControlPoints(k);
   const double normal_weight = options.normal_weight * 10 * d;  // normal_weight x diagonal / 10
   constexpr double scale_weight = 0.1, loss_factor = 3.0;
@@ -531,10 +228,15 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
   // the sign guard (fit/bernstein/empty_space_sign_guard.h) made at the first lowering.
   const bool relax = !far.empty() && options.far_field_relaxation > 0 &&
                      options.far_field_relaxation < 1 && options.far_field_floor < 1;
-  const double lowest_far_weight = options.far_field_floor * far_weight;
-  const double start_far_weight = far_weight;
+  const double start_far_weight = options.far_field_weight;
+  const double lowest_far_weight = options.far_field_floor * start_far_weight;
   std::unique_ptr<EmptySpaceSignGuard> guard;
+  if (far_weight < start_far_weight) {  // starting relaxed (a finer round of the adaptive fit)
+    guard = std::make_unique<EmptySpaceSignGuard>(grid, points, 2 * d, options.sign_guard_samples);
+    guard->Record(k, b);
+  }
   bool stage_improved = false;
+  double best_far_weight = far_weight;  // the far-field weight of the best iterate's stage
   double rms = MeshRms(grid, k, b, points, normals, nullptr);
   std::vector<double> best = b;
   double best_rms = rms;
@@ -594,6 +296,7 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
     if (next < best_rms && admissible) {
       best = b;
       best_rms = next;
+      best_far_weight = far_weight;
       stage_improved = true;
     }
     // A relaxed stage (guard made) also ends when no step length is admissible.
@@ -617,6 +320,7 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
     }
     rms = next;
   }
+  *far_weight_io = best_far_weight;
   return best;
 }
 
@@ -742,6 +446,18 @@ bool MeshFitOptions::IsValid(std::string* error) const {
     return fail("far_field_floor must be in [0, 1]");
   if (sign_guard_samples < 1 || sign_guard_samples > 16)
     return fail("sign_guard_samples must be in 1..16");
+  if (!(noise >= 0.0 && std::isfinite(noise))) return fail("noise must be >= 0 (0: estimated)");
+  if (!(refine_factor > 0.0 && std::isfinite(refine_factor)))
+    return fail("refine_factor must be positive");
+  if (!(refine_spacing_floor >= 0.0 && std::isfinite(refine_spacing_floor)))
+    return fail("refine_spacing_floor must be >= 0");
+  if (!(min_leaf_spacings >= 0.0 && std::isfinite(min_leaf_spacings)))
+    return fail("min_leaf_spacings must be >= 0");
+  if (max_levels < 0 || max_levels > kMaxRefinementLevel)
+    return fail("max_levels must be in 0.." + std::to_string(kMaxRefinementLevel));
+  if (max_unknowns < 1) return fail("max_unknowns must be >= 1");
+  if (!(feature_angle_deg > 0.0 && feature_angle_deg < 180.0))
+    return fail("feature_angle_deg must be in (0, 180)");
   return true;
 }
 
@@ -817,11 +533,24 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
       return result;
     }
   }
+  const BernsteinGrid grid = MeshFitGrid(points, options);
+  result = options.adaptive && !options.convex
+               ? FitAdaptiveBernsteinMesh(points, normals, options, grid)
+               : FitBernsteinMeshOnGrid(points, normals, options, grid, nullptr);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
+                                     const std::vector<Vec>& normals,
+                                     const MeshFitOptions& options, const BernsteinGrid& fit_grid,
+                                     const MeshFitStart* fit_start) {
+  MeshFitResult result;
   const int k = options.degree;
   const long long n = NumBernsteinControlPoints(k);
   result.degree = k;
   result.continuity = options.continuity;
-  result.grid = MeshFitGrid(points, options);
+  result.grid = fit_grid;
   const BernsteinGrid& grid = result.grid;
   if (MeshFitControlPoints(grid, k) > kMaxMeshFitControlPoints) {
     result.message = MeshFitSizeProblem(grid, k);
@@ -835,7 +564,8 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   const ContinuityRows c2 = BernsteinContinuityRows(grid, k, 2, 2);
   const std::vector<bool> c2_keep = EmptyFaceRows(c2, data);
 
-  DomainLeastSquares solver(grid, k, options.continuity, options, c2, c2_keep);
+  DomainLeastSquares solver(grid, k, options.continuity, options.continuity_weight,
+                            options.smoothing_weight, c2, c2_keep);
   const ContinuityProjector projector(grid, k, options.continuity);
   // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
   std::vector<FarFieldRow> far;
@@ -846,8 +576,14 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
                        options.far_field_ramp, options.far_field_ramp_power,
                        winding ? &*winding : nullptr);
   }
-  const double far_weight = options.far_field_weight;
-  std::vector<double> b = LinearInitialisation(points, normals, d, far, far_weight, &solver);
+  double far_weight = options.far_field_weight;
+  std::vector<double> b;
+  if (fit_start) {  // an earlier fit on a coarser grid, re-expressed on this one
+    b = fit_start->control_points;
+    far_weight = fit_start->far_weight;
+  } else {
+    b = LinearInitialisation(points, normals, d, far, far_weight, &solver);
+  }
   projector.Project(&b);
   result.initial_rms = MeshRms(grid, k, b, points, normals, nullptr);
   const double loss_scale = std::max(3.0 * result.initial_rms, 1e-9 * diagonal);
@@ -856,7 +592,7 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
   // point uphill, e.g. on the torus of the tests) the Ceres refinement on the exact residuals,
   // projected, kept when better. Returns the RMS; *defect the continuity defect.
   auto unconstrained = [&](std::vector<double>* b, int* iterations, double* defect) {
-    *b = RefineLinearised(grid, k, points, normals, d, options, *b, far, far_weight, &solver,
+    *b = RefineLinearised(grid, k, points, normals, d, options, *b, far, &far_weight, &solver,
                           iterations);
     *defect = projector.Project(b);
     double rms = MeshRms(grid, k, *b, points, normals, nullptr);
@@ -902,6 +638,8 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
     result.kept_initialisation = !(rms < result.initial_rms);
   }
   result.control_points = b;
+  result.far_weight = far_weight;
+  result.unknowns = solver.unknowns();
   result.box_sign_errors = far.empty() ? -1 : FarFieldSignErrors(grid, k, b, far, true);
   result.rms = MeshRms(grid, k, b, points, normals, &result.mean_normal_angle_deg);
   result.min_eigenvalue = std::numeric_limits<double>::infinity();
@@ -923,7 +661,6 @@ MeshFitResult FitBernsteinMesh(const std::vector<Vec>& points, const std::vector
     result.success = true;
     result.message = "converged";
   }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

@@ -122,6 +122,21 @@ struct MeshFitOptions {
   double far_field_relaxation = 0.3;
   double far_field_floor = 0.005;
   int sign_guard_samples = 8;
+  // Adaptive refinement (fit/bernstein/adaptive_mesh_fitter.h): rounds of fit, then split the
+  // leaves whose points' RMS residual exceeds refine_factor x the noise level (the cloud's noise,
+  // estimated when noise = 0, floored at refine_spacing_floor x its spacing), down to leaves of
+  // at least min_leaf_spacings spacings, at most max_levels below the base grid, while the C0
+  // unknowns stay within max_unknowns; sharp features: C0 only across the faces of leaves whose
+  // data normals spread by more than feature_angle_deg (dihedral angle of a crease).
+  bool adaptive = false;
+  double noise = 0.0;
+  double refine_factor = 2.0;
+  double refine_spacing_floor = 0.05;
+  double min_leaf_spacings = 2.0;
+  int max_levels = 3;
+  long long max_unknowns = 400000;
+  bool sharp_features = true;
+  double feature_angle_deg = 40.0;
   bool IsValid(std::string* error) const;
 };
 
@@ -146,12 +161,30 @@ struct MeshFitResult {
   int iterations = 0;
   bool kept_initialisation = false;  // the refinement did not improve: the initialisation is kept
   double seconds = 0.0;
+  double far_weight = 1.0;  // the far-field rows' weight at the end (relaxation, step 2)
+  // Adaptive refinement (options.adaptive): the scales read from the cloud, and what was built.
+  double noise = 0.0, spacing = 0.0, residual_threshold = 0.0;
+  int rounds = 0, levels = 0;
+  long long leaves = 0, unknowns = 0, sharp_faces = 0;
+  int rejected_rounds = 0;  // refined rounds dropped because they did not lower the RMS
   Model ToModel() const;
 };
 
 MeshFitResult FitBernsteinMesh(const std::vector<Eigen::Vector3d>& points,
                                const std::vector<Eigen::Vector3d>& normals,
                                const MeshFitOptions& options);
+
+// One fit on a given grid (steps 1-3); `start` (when not null: control points on `grid` and the
+// far-field weight reached so far) replaces the linear initialisation of step 1. No validation
+// (FitBernsteinMesh's), no seconds.
+struct MeshFitStart {
+  std::vector<double> control_points;
+  double far_weight = 1.0;
+};
+MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Eigen::Vector3d>& points,
+                                     const std::vector<Eigen::Vector3d>& normals,
+                                     const MeshFitOptions& options, const BernsteinGrid& grid,
+                                     const MeshFitStart* start);
 
 // The grid the fitter uses for a cloud (see the header comment).
 BernsteinGrid MeshGridForCloud(const std::vector<Eigen::Vector3d>& points, int cells, double cell,

@@ -2,6 +2,7 @@
 
 #include <Eigen/SPQRSupport>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -15,28 +16,28 @@ struct ContinuityProjector::Factor {
   using SpqrMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
   SpqrMatrix Ght;  // (G D^-1/2)^T, G = C1 P; empty for continuity 0
   Eigen::SPQR<SpqrMatrix> qr;
-  std::vector<long long> domain;  // P: the domain point of every control point
-  Eigen::VectorXd copies;         // D: control points per domain point
+  C0Parametrization c0;    // P, and the unknown every non-hanging control point equals
+  Eigen::VectorXd copies;  // D: control points equal to each unknown
 };
 
 ContinuityProjector::ContinuityProjector(const BernsteinGrid& grid, int k, int continuity)
     : grid_(grid), k_(k), continuity_(continuity) {
   if (grid.NumTetrahedra() <= 1) return;
   factor_ = std::make_unique<Factor>();
-  factor_->domain = DomainPointIndices(grid, k);
-  const long long nd = NumDomainPoints(grid, k);
+  factor_->c0 = BernsteinC0Parametrization(grid, k);
+  const long long nd = factor_->c0.unknowns;
   factor_->copies = Eigen::VectorXd::Zero(nd);
-  for (long long i : factor_->domain) factor_->copies[i] += 1.0;
+  for (long long i : factor_->c0.identity)
+    if (i >= 0) factor_->copies[i] += 1.0;
   if (continuity == 0) return;
   const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> G = c1.C * factor_->c0.P;
   std::vector<Eigen::Triplet<double, SuiteSparse_long>> ts;
-  for (int r = 0; r < c1.C.rows(); ++r)
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(c1.C, r); it; ++it) {
-      const long long w = factor_->domain[it.col()];
-      ts.emplace_back(w, r, it.value() / std::sqrt(factor_->copies[w]));
-    }
-  factor_->Ght.resize(nd, c1.C.rows());
-  factor_->Ght.setFromTriplets(ts.begin(), ts.end());  // duplicates (same w, same row) summed
+  for (int r = 0; r < G.outerSize(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(G, r); it; ++it)
+      ts.emplace_back(it.col(), r, it.value() / std::sqrt(factor_->copies[it.col()]));
+  factor_->Ght.resize(nd, G.rows());
+  factor_->Ght.setFromTriplets(ts.begin(), ts.end());
   factor_->qr.compute(factor_->Ght);
   if (factor_->qr.info() != Eigen::Success)
     throw std::runtime_error("continuity projection: SuiteSparseQR failed");
@@ -51,15 +52,17 @@ double ContinuityProjector::Project(std::vector<double>* b) const {
   if (!factor_) return 0.0;
   const Factor& f = *factor_;
   Eigen::VectorXd v = Eigen::VectorXd::Zero(f.copies.size());
-  for (size_t i = 0; i < f.domain.size(); ++i) v[f.domain[i]] += (*b)[i];
-  v.array() /= f.copies.array().sqrt();  // D^1/2 (D^-1 P^T b)
-  if (continuity_ == 1)
+  for (size_t i = 0; i < f.c0.identity.size(); ++i)
+    if (f.c0.identity[i] >= 0) v[f.c0.identity[i]] += (*b)[i];
+  v.array() /= f.copies.array().sqrt();  // D^1/2 w, w the mean of each unknown's copies
+  if (continuity_ == 1 && f.Ght.cols() > 0)
     for (int pass = 0; pass < 2; ++pass) {
       const Eigen::VectorXd y = f.qr.solve(v);
       v -= f.Ght * y;
     }
   v.array() /= f.copies.array().sqrt();  // w
-  for (size_t i = 0; i < f.domain.size(); ++i) (*b)[i] = v[f.domain[i]];
+  const Eigen::VectorXd projected = f.c0.P * v;
+  std::copy(projected.data(), projected.data() + projected.size(), b->data());
   return ContinuityDefect(grid_, k_, continuity_, b->data());
 }
 

@@ -3,84 +3,26 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <stdexcept>
-#include <unordered_map>
 #include <utility>
+
+#include "fit/bernstein/point_hash_grid.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
 
-// Points hashed into cubes of edge `cell`; queries visit the rings of cubes around a point.
-class HashGrid {
- public:
-  HashGrid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
-    lo_ = points[0];
-    for (const Vec& p : points) lo_ = lo_.cwiseMin(p);
-    for (size_t i = 0; i < points.size(); ++i)
-      cells_[Key(CellOf(points[i]))].push_back(static_cast<int>(i));
-  }
-  // fn(j, squared distance) for every point j within the cubes of Chebyshev ring <= rings.
-  template <class Fn>
-  void ForRings(const Vec& x, int first_ring, int last_ring, Fn&& fn) const {
-    const Eigen::Vector3i c = CellOf(x);
-    for (int dx = -last_ring; dx <= last_ring; ++dx)
-      for (int dy = -last_ring; dy <= last_ring; ++dy)
-        for (int dz = -last_ring; dz <= last_ring; ++dz) {
-          if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) < first_ring) continue;
-          const Eigen::Vector3i n = c + Eigen::Vector3i(dx, dy, dz);
-          if (n.minCoeff() < 0) continue;
-          const auto it = cells_.find(Key(n));
-          if (it == cells_.end()) continue;
-          for (int j : it->second) fn(j, (points_[j] - x).squaredNorm());
-        }
-  }
-  // Rings of cubes that hold every point within distance r of a point.
-  int RingsFor(double r) const { return static_cast<int>(std::ceil(r / cell_)); }
-  double cell() const { return cell_; }
-
- private:
-  Eigen::Vector3i CellOf(const Vec& p) const {
-    return ((p - lo_) / cell_).array().floor().cast<int>();
-  }
-  // Cells are non-negative and below 2^21 per axis (cell >= diagonal / 10^6).
-  static std::uint64_t Key(const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(c.x()) << 42) | (static_cast<std::uint64_t>(c.y()) << 21) |
-           static_cast<std::uint64_t>(c.z());
-  }
-  const std::vector<Vec>& points_;
-  double cell_;
-  Vec lo_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-};
-
 // The k nearest neighbours of point i that face the same way (n_i . n_j > 0; itself excluded),
-// nearest first, as (squared distance, index): rings of cubes grow until k are found and the
-// next ring is farther than the k-th (fewer than k when the cloud has fewer).
-std::vector<std::pair<double, int>> NearestSameFacing(const HashGrid& grid,
+// nearest first, as (squared distance, index) (fewer than k when the cloud has fewer).
+std::vector<std::pair<double, int>> NearestSameFacing(const PointHashGrid& grid,
                                                       const std::vector<Vec>& points,
                                                       const std::vector<Vec>& normals, size_t i,
                                                       int k) {
-  std::vector<std::pair<double, int>> found;
-  size_t seen = 1;  // points visited, itself included
-  for (int ring = 0; seen < points.size(); ++ring) {
-    grid.ForRings(points[i], ring, ring, [&](int j, double q) {
-      if (static_cast<size_t>(j) == i) return;
-      ++seen;
-      if (normals[i].dot(normals[j]) > 0) found.emplace_back(q, j);
-    });
-    if (static_cast<int>(found.size()) >= k) {
-      std::nth_element(found.begin(), found.begin() + (k - 1), found.end());
-      const double reach = ring * grid.cell();  // every point of later rings is farther
-      if (found[k - 1].first <= reach * reach) break;
-    }
-  }
-  std::sort(found.begin(), found.end());
-  if (static_cast<int>(found.size()) > k) found.resize(k);
-  return found;
+  return grid.Nearest(points[i], k, [&](int j) {
+    return static_cast<size_t>(j) != i && normals[i].dot(normals[j]) > 0;
+  });
 }
 
 // Area of the convex polygon (counter-clockwise or not).
@@ -120,7 +62,7 @@ std::vector<double> PointAreas(const std::vector<Vec>& points, const std::vector
   if (points.size() == 1 || !(diagonal > 0) || !std::isfinite(diagonal))
     throw std::invalid_argument("PointAreas: the points must span a finite, non-empty box");
   const double spacing = diagonal / std::sqrt(static_cast<double>(points.size()));
-  const HashGrid grid(points, std::max(spacing, 1e-6 * diagonal));
+  const PointHashGrid grid(points, std::max(spacing, 1e-6 * diagonal));
   constexpr int kNeighbours = 16, kClip = 8;  // see the header
   constexpr int kSides = 32;
   std::vector<double> areas(points.size());

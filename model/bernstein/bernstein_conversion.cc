@@ -66,4 +66,34 @@ std::vector<double> ElevateDegree(int k, const std::vector<double>& control_poin
   return out;
 }
 
+Eigen::MatrixXd ReexpressionMatrix(int k, const Eigen::Matrix4d& a) {
+  if (k < 0) throw std::invalid_argument("ReexpressionMatrix: degree must be >= 0");
+  const long long n = NumBernsteinControlPoints(k);
+  const auto multi = BernsteinMultiIndices(k);
+  Eigen::MatrixXd m(n, n);
+  // w: rows = control points of the current degree r, columns = the original n control points.
+  Eigen::MatrixXd w(n, n);
+  for (long long row = 0; row < n; ++row) {
+    const auto& lambda = multi[static_cast<size_t>(row)];
+    w.setIdentity();
+    int r = k;
+    for (int vertex = 0; vertex < 4; ++vertex)
+      for (int rep = 0; rep < lambda[vertex]; ++rep, --r) {
+        const double t[4] = {a(vertex, 0), a(vertex, 1), a(vertex, 2), a(vertex, 3)};
+        // One de Casteljau step from degree r to r - 1 at t (ascending index, in place).
+        for (int s1 = 0; s1 <= r - 1; ++s1)
+          for (int s2 = 0; s2 <= s1; ++s2)
+            for (int l4 = 0; l4 <= s2; ++l4) {
+              const int l3 = s2 - l4, l2 = s1 - s2;
+              const int j = BernsteinIndex(l2, l3, l4);
+              w.row(j) = t[0] * w.row(j) + t[1] * w.row(BernsteinIndex(l2 + 1, l3, l4)) +
+                         t[2] * w.row(BernsteinIndex(l2, l3 + 1, l4)) +
+                         t[3] * w.row(BernsteinIndex(l2, l3, l4 + 1));
+            }
+      }
+    m.row(row) = w.row(0);
+  }
+  return m;
+}
+
 }  // namespace implicitfit

@@ -9,6 +9,11 @@
 // G = X^-T Bm X^-1.
 // Degree elevation k -> k+1 (same polynomial):
 //   b'_lambda = sum_{i: lambda_i >= 1} lambda_i / (k+1) * b_{lambda - e_i},  |lambda| = k+1.
+// Re-expression on another tetrahedron S (subdivision, extension): with a_i the barycentric
+// coordinates of S's vertex i with respect to T, the control points of the same polynomial on S
+// are the blossom values b^S_lambda = p[a_1 (lambda_1 times), ..., a_4 (lambda_4 times)],
+// computed by k de Casteljau steps each at its own point (exact zeros stay exact: a face of S on
+// a face of T gives rows with no weight off that face).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,5 +37,8 @@ std::vector<double> QuadricToBernstein(const CartesianQuadric& q, const Tetrahed
 CartesianQuadric BernsteinToQuadric(const double* control_points, const Tetrahedron& tet);
 // The same polynomial at degree k + 1.
 std::vector<double> ElevateDegree(int k, const std::vector<double>& control_points);
+// M with b^S = M b^T (n x n, n = NumBernsteinControlPoints(k)); row i of `a`: the barycentric
+// coordinates of S's vertex i in T (any real numbers summing to 1: S need not lie in T).
+Eigen::MatrixXd ReexpressionMatrix(int k, const Eigen::Matrix4d& a);
 
 }  // namespace implicitfit

@@ -1,5 +1,6 @@
 #include "model/file/bernstein_mesh_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "model/file/model_json.h"
@@ -47,8 +48,8 @@ int ReadBernsteinMeshNode(const json& node, const std::string& path, const std::
   if (!node.contains("grid") || !node.at("grid").is_object()) Fail(gp, "missing or not an object");
   const json& g = node.at("grid");
   for (auto it = g.begin(); it != g.end(); ++it)
-    if (it.key() != "origin" && it.key() != "cell" && it.key() != "cells")
-      Fail(gp + "." + it.key(), "unknown field of a grid (origin, cell, cells)");
+    if (it.key() != "origin" && it.key() != "cell" && it.key() != "cells" && it.key() != "splits")
+      Fail(gp + "." + it.key(), "unknown field of a grid (origin, cell, cells, splits)");
   BernsteinGrid grid;
   if (!g.contains("origin") || !g.at("origin").is_array() || g.at("origin").size() != 3)
     Fail(gp + ".origin", "must be an array of 3 numbers");
@@ -71,12 +72,47 @@ int ReadBernsteinMeshNode(const json& node, const std::string& path, const std::
     count *= n;
     grid.cells[a] = static_cast<int>(n);
   }
+  if (g.contains("splits")) {  // adaptive refinement (model/bernstein/grid_refinement.h)
+    const json& sp = g.at("splits");
+    if (!sp.is_string()) Fail(gp + ".splits", "must be a string of split flags '0'/'1'");
+    // Each '1' adds 7 leaves: bound the count before building anything.
+    const std::string flags = sp.get<std::string>();
+    const long long ones = std::count(flags.begin(), flags.end(), '1');
+    const long long per_leaf = 6 * NumBernsteinControlPoints(k);
+    if (count / per_leaf + 7 * ones > kMaxMeshControlPoints / per_leaf)
+      Fail(gp + ".splits",
+           "the mesh would exceed " + std::to_string(kMaxMeshControlPoints) + " control points");
+    try {
+      grid.refinement = RefinementFromSplits(grid.cells, flags);
+    } catch (const std::invalid_argument& e) {
+      Fail(gp + ".splits", e.what());
+    }
+    count = grid.NumTetrahedra() * NumBernsteinControlPoints(k);
+  }
+  if (node.contains("c0_faces")) {  // faces declared C0 only (creases)
+    const std::string fp = path + ".c0_faces";
+    const json& f = node.at("c0_faces");
+    if (!f.is_array()) Fail(fp, "must be an array of [tetrahedron, face] pairs");
+    grid.sharp.assign(static_cast<size_t>(grid.NumTetrahedra()), 0);
+    for (size_t i = 0; i < f.size(); ++i) {
+      const std::string where = fp + "[" + std::to_string(i) + "]";
+      const json& e = f[i];
+      if (!e.is_array() || e.size() != 2 || !e[0].is_number_integer() || !e[1].is_number_integer())
+        Fail(where, "must be a pair [tetrahedron, face] of integers");
+      const long long t = e[0].get<long long>(), o = e[1].get<long long>();
+      if (t < 0 || t >= grid.NumTetrahedra())
+        Fail(where, "tetrahedron must be in 0.." + std::to_string(grid.NumTetrahedra() - 1));
+      if (o < 0 || o > 3) Fail(where, "face must be 0..3 (the opposite vertex)");
+      grid.sharp[static_cast<size_t>(t)] |= static_cast<unsigned char>(1u << o);
+    }
+  }
   const std::string cp = path + ".control_points";
   if (!node.contains("control_points")) Fail(cp, "missing");
   const json& v = node.at("control_points");
   if (!v.is_array() || static_cast<long long>(v.size()) != count)
     Fail(cp, "must be an array of " + std::to_string(count) +
-                 " numbers (6 nx ny nz (k+1)(k+2)(k+3)/6)");
+                 (grid.refined() ? " numbers (6 x leaves x (k+1)(k+2)(k+3)/6)"
+                                 : " numbers (6 nx ny nz (k+1)(k+2)(k+3)/6)"));
   std::vector<double> b(static_cast<size_t>(count));
   for (size_t i = 0; i < b.size(); ++i)
     b[i] = FiniteNumber(v[i], cp + "[" + std::to_string(i) + "]");
@@ -89,7 +125,15 @@ void WriteBernsteinMeshNode(const Model& model, const ModelNode& node, json* out
   (*out)["grid"] = {{"origin", {g.origin[0], g.origin[1], g.origin[2]}},
                     {"cell", g.cell},
                     {"cells", {g.cells[0], g.cells[1], g.cells[2]}}};
+  if (g.refined() && g.MaxLevel() > 0) (*out)["grid"]["splits"] = SplitsOf(g.refinement);
   (*out)["continuity"] = node.continuity;
+  if (g.HasSharpFaces()) {
+    json faces = json::array();
+    for (size_t t = 0; t < g.sharp.size(); ++t)
+      for (int o = 0; o < 4; ++o)
+        if ((g.sharp[t] >> o) & 1) faces.push_back({t, o});
+    (*out)["c0_faces"] = faces;
+  }
   const auto begin = model.parameters().begin() + node.first_parameter;
   (*out)["control_points"] = std::vector<double>(begin, begin + node.num_parameters);
 }

@@ -549,7 +549,7 @@ std::set<std::string> AllowedKeys(NodeType type) {
   if (type == NodeType::kPartitionSequence) keys.insert({"separators", "order", "children"});
   if (type == NodeType::kColemanFeatures) keys.insert({"children", "curve_features"});
   if (type == NodeType::kSkeletonOffset) keys.insert("features");  // docs/maths.md CO-2
-  if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity"});
+  if (type == NodeType::kBernsteinMesh) keys.insert({"degree", "grid", "continuity", "c0_faces"});
   if (type == NodeType::kBSplineSurface) keys.insert({"degree", "knots_u", "knots_v", "weights"});
   if (type == NodeType::kBSplineVolume) keys.insert({"degree", "box", "cells"});
   return keys;

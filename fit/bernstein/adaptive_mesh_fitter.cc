@@ -1,0 +1,167 @@
+#include "fit/bernstein/adaptive_mesh_fitter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "fit/bernstein/cloud_scales.h"
+#include "model/bernstein/bernstein_conversion.h"
+
+namespace implicitfit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+// Rough count of the C0 unknowns of a grid with `leaves` leaf cubes: each leaf owns about k^3
+// domain points (the lattice of spacing h/k), plus a fifth for the faces and hanging copies.
+long long EstimatedUnknowns(int k, long long leaves) { return leaves * k * k * k * 6 / 5; }
+
+double LeafEdge(const BernsteinGrid& grid, long long q) {
+  return std::ldexp(grid.cell, -grid.Leaf(q)[0]);
+}
+
+}  // namespace
+
+std::vector<double> ReexpressOnFinerGrid(int k, const BernsteinGrid& grid,
+                                         const std::vector<double>& b,
+                                         const BernsteinGrid& finer) {
+  const long long n = NumBernsteinControlPoints(k);
+  std::vector<double> out(static_cast<size_t>(finer.NumTetrahedra() * n));
+  for (long long t = 0; t < finer.NumTetrahedra(); ++t) {
+    const Tetrahedron tet = finer.TetrahedronOf(t);
+    const Vec centroid = 0.25 * (tet.vertex(0) + tet.vertex(1) + tet.vertex(2) + tet.vertex(3));
+    double tau[4];
+    const long long c = grid.Locate(centroid.data(), tau);
+    const Tetrahedron coarse = grid.TetrahedronOf(c);
+    Eigen::Matrix4d a;
+    for (int i = 0; i < 4; ++i) {
+      coarse.Barycentric(tet.vertex(i).data(), tau);
+      a.row(i) << tau[0], tau[1], tau[2], tau[3];
+    }
+    const Eigen::VectorXd bt =
+        ReexpressionMatrix(k, a) * Eigen::Map<const Eigen::VectorXd>(b.data() + c * n, n);
+    std::copy(bt.data(), bt.data() + n, out.begin() + t * n);
+  }
+  return out;
+}
+
+void LeafResiduals(int k, const BernsteinGrid& grid, const std::vector<double>& b,
+                   const std::vector<Vec>& points, std::vector<double>* rms,
+                   std::vector<int>* count) {
+  const long long n = NumBernsteinControlPoints(k);
+  rms->assign(static_cast<size_t>(grid.NumLeaves()), 0.0);
+  count->assign(static_cast<size_t>(grid.NumLeaves()), 0);
+  for (const Vec& p : points) {
+    double tau[4];
+    const long long t = grid.Locate(p.data(), tau);
+    Vec g;
+    const double f =
+        BernsteinPatch::Derivatives(k, grid.TetrahedronOf(t), b.data() + t * n, p.data(), &g);
+    (*rms)[t / 6] += f * f / std::max(g.squaredNorm(), 1e-300);
+    ++(*count)[t / 6];
+  }
+  for (size_t q = 0; q < rms->size(); ++q)
+    (*rms)[q] = (*count)[q] ? std::sqrt((*rms)[q] / (*count)[q]) : 0.0;
+}
+
+std::vector<bool> CreaseLeaves(const BernsteinGrid& grid, const std::vector<Vec>& points,
+                               const std::vector<Vec>& normals, double feature_angle_deg) {
+  std::vector<std::vector<int>> members(static_cast<size_t>(grid.NumLeaves()));
+  for (size_t i = 0; i < points.size(); ++i) {
+    double tau[4];
+    members[grid.Locate(points[i].data(), tau) / 6].push_back(static_cast<int>(i));
+  }
+  const double cos_limit = std::cos(feature_angle_deg * M_PI / 180.0);
+  std::vector<bool> out(members.size(), false);
+  for (size_t q = 0; q < members.size(); ++q) {
+    if (members[q].size() < 4) continue;
+    Vec mean = Vec::Zero();
+    for (int i : members[q]) mean += normals[i];
+    // The normal farthest from the mean, then the smallest cosine to it.
+    int far = members[q][0];
+    for (int i : members[q])
+      if (normals[i].dot(mean) < normals[far].dot(mean)) far = i;
+    double lowest = 1.0;
+    for (int i : members[q]) lowest = std::min(lowest, normals[i].dot(normals[far]));
+    out[q] = lowest < cos_limit;
+  }
+  return out;
+}
+
+MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
+                                       const std::vector<Vec>& normals,
+                                       const MeshFitOptions& options, const BernsteinGrid& base) {
+  const int k = options.degree;
+  const CloudScales scales =
+      EstimateCloudScales(points, normals, std::max<size_t>(1, points.size() / 20000));
+  const double noise = options.noise > 0 ? options.noise : scales.noise;
+  const double threshold =
+      std::max(options.refine_factor * noise, options.refine_spacing_floor * scales.spacing);
+  const double min_leaf = options.min_leaf_spacings * scales.spacing;
+  BernsteinGrid grid = base;
+  grid.refinement = UniformRefinement(grid.cells);
+  grid.sharp.clear();
+  MeshFitResult fit = FitBernsteinMeshOnGrid(points, normals, options, grid, nullptr);
+  int rounds = 1;
+  for (int level = 1; level <= options.max_levels && fit.success; ++level) {
+    std::vector<double> rms;
+    std::vector<int> count;
+    LeafResiduals(k, fit.grid, fit.control_points, points, &rms, &count);
+    // Candidates: leaves above the threshold that may still be halved, worst first, within the
+    // budget of unknowns (a leaf split adds 7 leaves; balancing adds a few more).
+    std::vector<long long> candidates;
+    for (long long q = 0; q < fit.grid.NumLeaves(); ++q)
+      if (rms[q] > threshold && count[q] > 0 && fit.grid.Leaf(q)[0] < options.max_levels &&
+          0.5 * LeafEdge(fit.grid, q) >= min_leaf)
+        candidates.push_back(q);
+    if (candidates.empty()) break;
+    std::sort(candidates.begin(), candidates.end(),
+              [&](long long a, long long b) { return rms[a] > rms[b]; });
+    const long long room =
+        (options.max_unknowns - EstimatedUnknowns(k, fit.grid.NumLeaves())) /
+        std::max<long long>(1, EstimatedUnknowns(k, 7) * 3 / 2);
+    if (room <= 0) break;
+    if (static_cast<long long>(candidates.size()) > room) candidates.resize(room);
+    std::vector<bool> split(static_cast<size_t>(fit.grid.NumLeaves()), false);
+    for (long long q : candidates) split[q] = true;
+    split = BalanceSplits(fit.grid.cells, fit.grid.refinement, split);
+    BernsteinGrid finer = fit.grid;
+    finer.refinement = SplitLeaves(fit.grid.cells, fit.grid.refinement, split);
+    finer.sharp.clear();
+    if (options.sharp_features) {
+      const std::vector<bool> crease =
+          CreaseLeaves(finer, points, normals, options.feature_angle_deg);
+      finer.sharp.assign(static_cast<size_t>(finer.NumTetrahedra()), 0);
+      for (long long q = 0; q < finer.NumLeaves(); ++q)
+        if (crease[q])
+          for (int p = 0; p < 6; ++p) finer.sharp[6 * q + p] = 0xF;
+    }
+    MeshFitStart start;
+    start.control_points = ReexpressOnFinerGrid(k, fit.grid, fit.control_points, finer);
+    start.far_weight = fit.far_weight;
+    MeshFitResult next = FitBernsteinMeshOnGrid(points, normals, options, finer, &start);
+    ++rounds;
+    // A round is kept only when it lowers the RMS residual: on the 20 000-point chamfered block
+    // the refined round ended above its start (0.0164 against 0.0091, the projection onto the
+    // C1 space of the refined grid moving the penalised solution), so refining stops there.
+    if (!next.success || !(next.rms < fit.rms)) {
+      ++fit.rejected_rounds;
+      break;
+    }
+    next.iterations += fit.iterations;
+    next.rejected_rounds = fit.rejected_rounds;
+    next.initial_rms = fit.initial_rms;
+    fit = std::move(next);
+  }
+  fit.noise = noise;
+  fit.spacing = scales.spacing;
+  fit.residual_threshold = threshold;
+  fit.rounds = rounds;
+  fit.levels = fit.grid.MaxLevel();
+  fit.leaves = fit.grid.NumLeaves();
+  for (unsigned char s : fit.grid.sharp) fit.sharp_faces += __builtin_popcount(s);
+  if (fit.grid.MaxLevel() == 0) fit.grid.refinement = GridRefinement();  // plain uniform file
+  return fit;
+}
+
+}  // namespace implicitfit
