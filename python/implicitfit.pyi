@@ -42,8 +42,10 @@ def fit(
     threshold: Optional[float] = None,
     fix: Optional[Mapping[str, Union[float, Sequence[float]]]] = None,
     estimator: str = "robust",
+    band: Optional[float] = None,
 ) -> Tuple[Optional[Model], _Report]:
-    """One primitive, as `implicitfit fit CLOUD --model KIND`; Model is None when it fails."""
+    """One primitive, as `implicitfit fit CLOUD --model KIND`; Model is None when it fails.
+    threshold: a fixed inlier distance; band: the adaptive band's start."""
 
 def fit_tree(
     points: _Points, normals: Optional[_Points], init: Model
