@@ -115,25 +115,27 @@ TEST(MetrologyCli, BatchPassesTheEstimatorThrough) {
 
 // --resume keeps an earlier result only when it was made with the same estimator: a robust
 // result is refitted for --estimator minimum-zone, and the minimum-zone result then kept.
-TEST(MetrologyCli, BatchResumeRefitsWhenTheEstimatorChanged) {
+// --resume reuses only results made with the same settings (issue 26): a changed estimator is
+// refused, naming it, and the stored results stay; a run without --resume refits.
+TEST(MetrologyCli, BatchResumeRefusesAChangedEstimator) {
   const std::string dir = testsupport::ScratchDir("cmm_batch_resume");
   WriteText(dir + "/ball.xyz", TenPointSphere(false));
   const std::string batch = kCli + " batch " + dir +
-                            "/ball.xyz --model sphere --jobs 1 --out-dir " + dir + "/out --resume";
-  const auto robust = RunCommand(batch);
+                            "/ball.xyz --model sphere --jobs 1 --out-dir " + dir + "/out";
+  const auto robust = RunCommand(batch + " --resume");
   ASSERT_EQ(robust.exit_code, 0) << robust.err << robust.out;
+  EXPECT_EQ(ReadJson(dir + "/out/ball.report.json")["estimator"], "robust");
+  const auto changed = RunCommand(batch + " --resume --estimator minimum-zone");
+  EXPECT_EQ(changed.exit_code, 2) << changed.err << changed.out;
+  EXPECT_NE(changed.err.find("estimator"), std::string::npos) << changed.err;
   EXPECT_EQ(ReadJson(dir + "/out/ball.report.json")["estimator"], "robust");
   const auto zone = RunCommand(batch + " --estimator minimum-zone");
   ASSERT_EQ(zone.exit_code, 0) << zone.err << zone.out;
   EXPECT_NE(zone.out.find("1 fitted, 0 skipped"), std::string::npos) << zone.out;
   EXPECT_EQ(ReadJson(dir + "/out/ball.report.json")["estimator"], "minimum-zone");
-  const auto again = RunCommand(batch + " --estimator minimum-zone");
+  const auto again = RunCommand(batch + " --resume --estimator minimum-zone");
   ASSERT_EQ(again.exit_code, 0) << again.err << again.out;
   EXPECT_NE(again.out.find("0 fitted, 1 skipped"), std::string::npos) << again.out;
-  const auto back = RunCommand(batch + " --estimator robust");
-  ASSERT_EQ(back.exit_code, 0) << back.err << back.out;
-  EXPECT_NE(back.out.find("1 fitted, 0 skipped"), std::string::npos) << back.out;
-  EXPECT_EQ(ReadJson(dir + "/out/ball.report.json")["estimator"], "robust");
 }
 
 }  // namespace
