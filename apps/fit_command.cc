@@ -41,6 +41,7 @@ struct FitArgs {
   std::string grid, child = "plane";
   std::string view, ply;                 // --view PAGE.html, --ply RESIDUALS.ply
   std::optional<std::vector<int>> inliers;  // of a primitive fit, for the view and the PLY
+  std::optional<Model> model;  // the primitive fit's model, for the view and the PLY
 };
 
 }  // namespace
@@ -164,12 +165,15 @@ CommandAction AddFitCommand(CLI::App& app) {
     std::printf("%s\n", ModelToJson(model)["root"].dump().c_str());
     std::printf("%s\n", result.BriefReport().c_str());
     a->inliers = result.inliers;
+    a->model = model;
     return 0;
   };
   return [a, run]() {
     const int code = run();
     if (code == 0 && (!a->view.empty() || !a->ply.empty()))
-      WriteFitOutputs(a->cloud, ReadModelFile(a->out), a->inliers ? &*a->inliers : nullptr,
+      // The model as written: --out is renamed into place only when the command returns.
+      WriteFitOutputs(a->cloud, a->model ? *a->model : ReadModelFile(CurrentFileLocation(a->out)),
+                      a->inliers ? &*a->inliers : nullptr,
                       a->view, a->ply);
     return code;
   };

@@ -14,7 +14,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <utility>
@@ -68,26 +67,6 @@ void CheckOutputs(const ReconstructArgs& a) {
   }
 }
 
-// The outputs are written together or not at all: each to a temporary in its own folder
-// first, then all renamed into place; a failure removes the temporaries (and the outputs
-// already renamed) so that no file is left behind by a failed run.
-using OutputWriter = std::pair<std::string, std::function<void(const std::string&)>>;
-void WriteTogether(const std::vector<OutputWriter>& outputs) {
-  const std::string suffix = ".partial." + std::to_string(::getpid());
-  size_t renamed = 0;
-  try {
-    for (const auto& [path, write] : outputs) write(path + suffix);
-    for (; renamed < outputs.size(); ++renamed) {
-      const std::string& path = outputs[renamed].first;
-      if (std::rename((path + suffix).c_str(), path.c_str()) != 0)
-        throw InputError(path + ": cannot write");
-    }
-  } catch (...) {
-    for (size_t k = 0; k < outputs.size(); ++k)
-      std::remove((outputs[k].first + (k < renamed ? "" : suffix)).c_str());
-    throw;
-  }
-}
 
 }  // namespace
 
@@ -136,17 +115,14 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       mesh = MeshModel(r.model, mo).mesh;
       stage.End(std::to_string(mesh.triangles.size()) + " triangles");
     }
-    std::vector<OutputWriter> outputs;
+    // All or nothing: the command's output transaction (apps/output_guard.h) renames these
+    // into place only when the command returns.
     if (write) {
-      outputs.push_back({a->out, [&](const std::string& p) { WriteModelFile(r.model, p); }});
-      if (!a->mesh.empty())
-        outputs.push_back({a->mesh, [&](const std::string& p) { WriteMeshPlyFile(mesh, p); }});
+      WriteModelFile(r.model, a->out);
+      if (!a->mesh.empty()) WriteMeshPlyFile(mesh, a->mesh);
     }
     if (!a->report.empty())  // also when verification failed: the reasons
-      outputs.push_back({a->report, [&](const std::string& p) {
-                           WriteFileAtomically(p, report.dump(2) + "\n");
-                         }});
-    WriteTogether(outputs);
+      WriteFileAtomically(a->report, report.dump(2) + "\n");
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.success) {

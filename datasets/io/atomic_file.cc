@@ -128,6 +128,15 @@ void WriteFileAtomically(const std::string& path, const std::string& content) {
   state.staged.push_back(s);
 }
 
+std::string CurrentFileLocation(const std::string& path) {
+  TransactionState& state = State();
+  std::lock_guard<std::mutex> lock(state.mutex);
+  if (state.active)
+    for (const Staged& s : state.staged)
+      if (s.path == path || s.target == path) return s.temporary;
+  return path;
+}
+
 OutputTransaction::OutputTransaction() {
   TransactionState& state = State();
   std::lock_guard<std::mutex> lock(state.mutex);

@@ -19,6 +19,10 @@ namespace implicitfit {
 
 void WriteFileAtomically(const std::string& path, const std::string& content);
 
+// Where `path`'s content is now: its staged temporary while an open transaction holds a write
+// to it (a command reading back what it wrote, e.g. fit --view of its --out), else `path`.
+std::string CurrentFileLocation(const std::string& path);
+
 class OutputTransaction {
  public:
   OutputTransaction();  // at most one at a time per process

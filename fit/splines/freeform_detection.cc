@@ -30,7 +30,7 @@ struct Components {
 // largest first; member[] is scratch (size N, -1 outside any call).
 template <typename Joined>
 std::vector<std::vector<int>> ConnectedParts(const std::vector<int>& subset,
-                                             const std::vector<std::vector<int>>& neighbours,
+                                             const NeighbourGraph& neighbours,
                                              const Joined& joined, std::vector<int>* member) {
   Components uf;
   uf.parent.resize(subset.size());
@@ -68,7 +68,7 @@ struct Candidate {
 class FreeformStage {
  public:
   FreeformStage(const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                const std::vector<std::vector<int>>& neighbours, const FreeformOptions& o)
+                const NeighbourGraph& neighbours, const FreeformOptions& o)
       : points_(points), normals_(normals), neighbours_(neighbours), o_(o),
         member_(points.size(), -1) {
     cos_theta_ = std::cos(o.normal_angle_deg * M_PI / 180.0);
@@ -258,7 +258,7 @@ class FreeformStage {
 
   const std::vector<Vec>& points_;
   const std::vector<Vec>& normals_;
-  const std::vector<std::vector<int>>& neighbours_;
+  const NeighbourGraph& neighbours_;
   FreeformOptions o_;
   std::vector<int> member_;
   double cos_theta_ = 0.0, s_ = 0.0;
@@ -279,7 +279,7 @@ bool FreeformOptions::IsValid(std::string* error) const {
 }
 
 FreeformResult DetectFreeformSurfaces(const std::vector<Vec>& points, const std::vector<Vec>& normals,
-                                      const std::vector<std::vector<int>>& neighbours,
+                                      const NeighbourGraph& neighbours,
                                       const FreeformOptions& options, int first_label,
                                       std::vector<int>* labels, std::vector<double>* residuals) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "datasets/clouds/neighbour_graph.h"
 #include "model/model.h"
 
 namespace implicitfit {
@@ -69,7 +70,7 @@ struct FreeformResult {
 // labelled first_label, first_label + 1, ... and their points' residuals set.
 FreeformResult DetectFreeformSurfaces(const std::vector<Eigen::Vector3d>& points,
                                       const std::vector<Eigen::Vector3d>& normals,
-                                      const std::vector<std::vector<int>>& neighbours,
+                                      const NeighbourGraph& neighbours,
                                       const FreeformOptions& options, int first_label,
                                       std::vector<int>* labels, std::vector<double>* residuals);
 

@@ -93,7 +93,7 @@ TEST(Neighbourhoods, DuplicatesGiveTheBruteForceNeighbourhoods) {
     for (size_t j = 0; j < points.size(); ++j)
       if (j != i) all.push_back((points[j] - points[i]).norm());
     std::sort(all.begin(), all.end());
-    const std::vector<int>& mine = nb.indices[i];
+    const NeighbourGraph::Row mine = nb.indices[i];
     ASSERT_GE(mine.size(), 8u);
     ASSERT_LE(mine.size(), 30u);
     for (size_t k = 0; k < mine.size(); ++k) {
