@@ -16,7 +16,7 @@ size=900x600
 "$cli" view "$work/pc34.scene.json" "$work/pc34.seg.ply" --title "detect: Fit4CAD PC34" \
   --png docs/images/pc34_segmentation.png --size $size --quiet
 # 2. reconstruct's solid of PC34 (on detect's primitives), cut through the shank's axis and seen
-#    from the cut side: red is the solid's material, the blue walls inside it a void.
+#    from the cut side: red is the solid's material, blue its outside (the socket).
 "$cli" reconstruct "$pc34" --out "$work/pc34.solid.json" > /dev/null
 "$cli" view "$pc34" "$work/pc34.solid.json" --title "reconstruct: PC34 solid, cut through the shank" \
   --clip=-y,0.5 --option hide=0 --png docs/images/pc34_solid_clipped.png --size $size --quiet
