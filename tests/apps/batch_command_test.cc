@@ -254,10 +254,15 @@ TEST_F(BatchCommand, ResumeRefitsOnlyMissingOrBrokenOutputs) {
   EXPECT_EQ(again.exit_code, 0);
   EXPECT_NE(again.out.find("5 inputs: 0 fitted, 5 skipped, 0 failed"), std::string::npos)
       << again.out;
-  // A model of another kind is not a complete output for --model plane.
+  // Results of another kind are not reused for --model plane: --resume refuses them, naming the
+  // report and the changed setting (issue 26), and leaves them as they were.
+  const std::string before = Slurp(out + "/" + truths[1].name + ".model.json");
   const auto plane = RunCommand(kCli + " batch" + Join(truths, 1) + " --model plane --out-dir " +
                                 out + " --resume");
-  EXPECT_NE(plane.out.find("0 skipped"), std::string::npos) << plane.out;
+  EXPECT_EQ(plane.exit_code, 2) << plane.out << plane.err;
+  EXPECT_NE(plane.err.find("made with other settings"), std::string::npos) << plane.err;
+  EXPECT_NE(plane.err.find("plane"), std::string::npos) << plane.err;
+  EXPECT_EQ(Slurp(out + "/" + truths[1].name + ".model.json"), before);
 }
 
 TEST_F(BatchCommand, KillDashNineLeavesNoPartialFileAndResumeCompletes) {

@@ -184,7 +184,7 @@ TEST_F(VerifyCommand, ReconstructChecksOutputsBeforeWorkAndLeavesNothingBehind) 
                       "/no_such_folder/m.json --quiet");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("no_such_folder/m.json"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("no such folder"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no_such_folder does not exist"), std::string::npos) << r.err;
   r = RunCommand(kCli + " reconstruct " + dir_ + "/cloud.xyz --out " + dir_ + "/m.json --mesh " +
                  dir_ + "/no_such_folder/m.ply --report " + dir_ + "/r.json --quiet");
   EXPECT_EQ(r.exit_code, 2) << r.err;
