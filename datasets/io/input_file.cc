@@ -85,7 +85,9 @@ bool InputFile::Fill() {
 bool InputFile::ReadLine(std::string* line, size_t max_line) {
   size_t scanned = begin_;
   while (true) {
-    const void* nl = std::memchr(buffer_.data() + scanned, '\n', end_ - scanned);
+    // (memchr on an empty buffer's null data() is undefined even for 0 bytes)
+    const void* nl =
+        end_ > scanned ? std::memchr(buffer_.data() + scanned, '\n', end_ - scanned) : nullptr;
     if (nl) {
       const size_t stop = static_cast<const char*>(nl) - buffer_.data();
       if (stop - begin_ > max_line) break;
