@@ -8,16 +8,12 @@
 #include <mutex>
 
 #include "fit/bernstein/convex_patch_fit.h"
+#include "fit/common/glpk_mutex.h"
 #include "model/bernstein/bernstein_patch.h"
 #include "model/certificates/convexity_certificate.h"
 
 namespace implicitfit {
 namespace {
-
-std::mutex& GlpkLock() {  // GLPK's environment is per thread only in some builds
-  static std::mutex m;
-  return m;
-}
 
 // The mu of a degree-k patch, as (m2, m3, m4).
 std::vector<std::array<int, 3>> Mus(int k) {
@@ -72,8 +68,9 @@ Search MostConvexPoint(int k, const Eigen::MatrixXd& N, const Eigen::VectorXd& y
     const std::vector<double> col(N.col(l).data(), N.col(l).data() + n);
     for (const auto& mu : mus) column_guo[l].push_back(Guo(k, col.data(), mu));
   }
-  std::lock_guard<std::mutex> lock(GlpkLock());
+  std::lock_guard<std::mutex> lock(GlpkMutex());
   glp_term_out(GLP_OFF);
+  FreeGlpkEnvironmentAtThreadExit();
   glp_prob* lp = glp_create_prob();
   glp_set_obj_dir(lp, GLP_MAX);
   glp_add_cols(lp, m + 1);

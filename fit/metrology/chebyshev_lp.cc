@@ -16,6 +16,7 @@ ChebyshevLpSolution SolveChebyshevLp(const Eigen::VectorXd& d, const Eigen::Matr
   ChebyshevLpSolution s;
   std::lock_guard<std::mutex> lock(GlpkMutex());
   glp_term_out(GLP_OFF);
+  FreeGlpkEnvironmentAtThreadExit();
   glp_prob* lp = glp_create_prob();
   glp_set_obj_dir(lp, GLP_MIN);
   glp_add_cols(lp, k + 1);

@@ -14,6 +14,7 @@ using Vec = Eigen::Vector3d;
 
 // The programme over x, y, z (free) with one row per face; objective set by the caller.
 glp_prob* MakeProgramme(const std::vector<HalfSpace>& faces) {
+  FreeGlpkEnvironmentAtThreadExit();
   glp_prob* lp = glp_create_prob();
   glp_add_cols(lp, 3);
   for (int j = 1; j <= 3; ++j) glp_set_col_bnds(lp, j, GLP_FR, 0.0, 0.0);
