@@ -41,6 +41,9 @@ struct BatchOutcome {
   size_t inliers = 0, points = 0;
   double seconds = 0.0;  // wall time in this run
   std::string error;     // why it failed (empty when ok or skipped)
+  // It ran out of memory (std::bad_alloc) while other inputs ran beside it: RunBatch runs it
+  // again alone once every worker has finished (--jobs above what memory allows).
+  bool out_of_memory = false;
   bool HasFigures() const { return status != BatchStatus::kError; }
   bool Succeeded() const { return status == BatchStatus::kOk || status == BatchStatus::kSkipped; }
   // "<input>: <error>" (the input named once, also when the error already starts with it).
