@@ -1,4 +1,4 @@
-#include "apps/fit_model_kinds.h"
+#include "apps/fit/fit_model_kinds.h"
 
 #include <cmath>
 #include <cstdio>

@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
-#include "apps/fit_job.h"
-#include "apps/fit_model_kinds.h"
+#include "apps/fit/fit_job.h"
+#include "apps/fit/fit_model_kinds.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
