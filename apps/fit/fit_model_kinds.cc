@@ -97,6 +97,20 @@ bool IsPatchKind(const std::string& kind) {
   return kind == "quadric-patch" || kind == "cubic-patch";
 }
 
+const std::vector<std::string>& FitCommandKinds() {
+  static const std::vector<std::string> kinds = {
+      "plane",           "sphere",        "cylinder",   "cone",    "torus",      "quadric-patch",
+      "cubic-patch",     "box",           "paraboloid", "capsule", "patch-mesh", "partition",
+      "bspline-surface", "bspline-volume"};
+  return kinds;
+}
+
+std::string FitCommandKindList() {
+  std::string list;
+  for (const std::string& kind : FitCommandKinds()) list += (list.empty() ? "" : ", ") + kind;
+  return list;
+}
+
 int RunTreeFit(const ModelFitRequest& request) {
   const Model init = ReadModelFile(request.init);
   std::string normals;

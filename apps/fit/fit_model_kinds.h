@@ -71,6 +71,13 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request);
 ModelKindFit FitMeshCloud(const ModelFitRequest& request);
 
 bool IsPatchKind(const std::string& kind);
+
+// Every kind `fit --model` takes, in the order its help lists them: the primitives of the
+// robust fitter, the Bernstein patches, the shapes, the patch mesh, the soft partition and the
+// splines. The help text and the "unknown kind" error are built from this one list.
+const std::vector<std::string>& FitCommandKinds();
+// FitCommandKinds() joined with ", ".
+std::string FitCommandKindList();
 // The tree fitter's options of the command line: the defaults, with the work limit
 // (fit/tree/tree_fitter.h: kMaxTreeFitWork).
 inline TreeFitOptions CommandLineTreeFitOptions() {
