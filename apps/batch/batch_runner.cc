@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "apps/batch/batch_job.h"
-#include "apps/fit_job.h"
+#include "apps/fit/fit_job.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/model_file.h"
 #include "datasets/io/output_path.h"

@@ -1,4 +1,4 @@
-// Runs `implicitfit batch`: one primitive fit per input cloud (apps/fit_job.h), each input on its
+// Runs `implicitfit batch`: one primitive fit per input cloud (apps/fit/fit_job.h), each input on its
 // own, over a bounded pool of threads that take the next input as they finish (dynamic load
 // balancing; a cloud is read only when its job starts, so memory is bounded by the pool).
 // For an input named <name> (apps/batch/batch_inputs.h) in out_dir:
@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "apps/batch/batch_inputs.h"
-#include "apps/fit_model_kinds.h"
+#include "apps/fit/fit_model_kinds.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/primitive/primitive_fitter.h"
 
@@ -62,7 +62,7 @@ struct BatchOptions {
   bool scene = false;       // `--model scene`: one detection per input (apps/detect_job.h)
   DetectionOptions detect;  // used for every input when scene is set
   bool solid = false;       // `--model solid`: one reconstruction per input (detect.seed used)
-  // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit_model_kinds.h): when set,
+  // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit/fit_model_kinds.h): when set,
   // every input is fitted by model_fit(cloud path) instead of `fit`; resume then also requires
   // the model's root to be model_kind and, with require_certified (--convex), the report to
   // say certified_convex.
