@@ -45,7 +45,8 @@ DATA = ROOT / "datasets" / "data"
 REPORT_KINDS = ("fit", "detect", "reconstruct", "verify", "check")
 
 problems = []
-validated = {"model": 0, "scene": 0, "report": 0}
+validated = {"model": 0, "scene": 0, "report": 0}  # documents the commands wrote or printed
+hand_made = []  # valid documents written here or kept in the repository
 
 
 def problem(text):
@@ -109,8 +110,9 @@ def errors(v, document):
     return ["%s: %s" % (e.json_path, e.message[:200]) for e in v.iter_errors(document)]
 
 
-def validate(document, name, where, kind=None):
-    """`document` must satisfy schema `name` (and, for a report, the definition of its kind)."""
+def validate(document, name, where, kind=None, written=True):
+    """`document` must satisfy schema `name` (and, for a report, the definition of its kind).
+    `written`: the commands wrote it (counted in the summary)."""
     found = errors(VALIDATOR[name], document)
     if kind:
         found += ["(as a %s report) %s" % (kind, e)
@@ -118,10 +120,13 @@ def validate(document, name, where, kind=None):
     for e in found[:5]:
         problem("%s does not match %s.schema.json: %s" % (where, name, e))
     if not found:
-        validated[name] += 1
+        if written:
+            validated[name] += 1
+        else:
+            hand_made.append(where)
 
 
-def validate_file(path, name, kind=None):
+def validate_file(path, name, kind=None, written=True):
     if not os.path.isfile(path):
         problem("%s: not written" % path)
         return
@@ -132,7 +137,7 @@ def validate_file(path, name, kind=None):
     except ValueError as e:
         problem("%s: not JSON: %s" % (path, e))
         return
-    validate(document, name, os.path.basename(path), kind)
+    validate(document, name, os.path.basename(path), kind, written)
 
 
 def run(args, expect=(0,), stdout_json=None):
@@ -300,7 +305,7 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
               for a, h in enumerate((0.5, 0.4, 0.3)) for s in (-1, 1)]
     box = write("box.json", model_document({"type": "intersection", "delta": 0.1,
                                             "epsilon": 0.05, "order": 0, "children": planes}))
-    validate_file(box, "model")
+    validate_file(box, "model", written=False)
     run(["sample", box, "--count", 2000, "--noise", 0.002, "--seed", 5, "--out", t / "box.xyz"])
     box_cloud = t / "box.xyz"
 
@@ -397,7 +402,7 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
     corpus = sorted((ROOT / "tests" / "fuzz" / "model_corpus").glob("*.json"))
     accepted = [path for path in corpus if tool_accepts(path)]
     for path in accepted:
-        validate_file(path, "model")
+        validate_file(path, "model", written=False)
     if len(accepted) < 5:
         problem("only %d of %d corpus models accepted by the tool" % (len(accepted), len(corpus)))
 
@@ -409,7 +414,7 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
             document.update(CLAIMS)
         if not tool_accepts(write("node.json", document)):
             problem("the hand-made %s model is refused by the tool" % name)
-        validate(document, "model", "the hand-made %s model" % name)
+        validate(document, "model", "the hand-made %s model" % name, written=False)
         for what, m in key_mutants(document):
             mutants += 1
             tool = tool_accepts(write("mutant.json", m))
@@ -493,6 +498,11 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
 
     fit_report = strict_load((t / "sphere.report.json").read_text(), "sphere.report.json")
     detect_report = strict_load((t / "crease.detect.json").read_text(), "crease.detect.json")
+    solid_report = strict_load((t / "solid.report.json").read_text(), "solid.report.json")
+    verify_report = strict_load((t / "verify.json").read_text(), "verify.json")
+    check_report = strict_load(run(["check", t / "patch.json", "--json"]).stdout, "check")
+    no_verdict = copy.deepcopy(check_report)
+    del no_verdict["files"][0]["verdict"]
     invalid_reports = {
         "a fit report whose success is a string": dict(fit_report, success="yes"),
         "a fit report with a negative point count": dict(fit_report, points=-1),
@@ -500,16 +510,24 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
         "a detect report without unassigned": {k: v for k, v in detect_report.items()
                                                if k != "unassigned"},
         "a report that is a list": [fit_report],
+        "a reconstruct report whose bounded is an object": dict(solid_report,
+                                                                bounded={"proven": True}),
+        "a reconstruct report with a primitive on side 'both'": dict(
+            solid_report, primitives=[dict(solid_report["primitives"][0], side="both")]),
+        "a verify report without pieces": {k: v for k, v in verify_report.items()
+                                           if k != "pieces"},
+        "a check report whose file has no verdict": no_verdict,
     }
     for what, document in invalid_reports.items():
         if VALIDATOR["report"].is_valid(document):
             problem("%s passes report.schema.json" % what)
 
 total = sum(validated.values())
-print("check_schemas: %d files validated (%d models, %d scenes, %d reports), %d of %d corpus "
-      "models accepted by the tool, %d node types and forms, %d key mutants (%d disagreements)"
-      % (total, validated["model"], validated["scene"], validated["report"], len(accepted),
-         len(corpus), len(EVERY_NODE), mutants, disagreements))
+print("check_schemas: %d documents the commands wrote validated (%d models, %d scenes, %d "
+      "reports); %d valid hand-made and corpus models (%d of %d corpus models accepted by the "
+      "tool, %d node types and forms); %d key mutants, %d disagreements"
+      % (total, validated["model"], validated["scene"], validated["report"], len(hand_made),
+         len(accepted), len(corpus), len(EVERY_NODE), mutants, disagreements))
 if problems:
     print("check_schemas: %d problems" % len(problems))
     sys.exit(1)
