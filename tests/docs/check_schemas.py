@@ -13,9 +13,11 @@ this interpreter has no `jsonschema` module (Debian: python3-jsonschema, for /us
      (and the JSON reconstruct, verify and check print) validates against its schema, each
      report also against the definition of its kind;
   3. every model of tests/fuzz/model_corpus that the tool accepts (`eval` exit 0) validates;
-  4. one hand-made model per node type and form: the tool and the schema accept it, and for each
+  4. one hand-made model per node type and form: the tool and the schema accept it; for each
      copy with one key dropped or one unknown key added (at every object of the document) the
-     tool and the schema agree (the schema is as strict as the reader on keys);
+     tool and the schema agree (the schema is as strict as the reader on keys); each copy with
+     an array one element longer or shorter, a number negated or written as a string, that the
+     tool accepts, the schema accepts (the schema is never stricter than the reader);
   5. hand-made invalid models, scenes and reports (unknown key, missing radius, wrong array
      lengths, out-of-range values, wrong types) are refused by the schema, and the models and
      scenes by the tool too.
@@ -282,6 +284,36 @@ def key_mutants(document):
             yield "%s dropped at %s" % (key, at), m
 
 
+def value_mutants(document):
+    """Copies of the document with one array grown or shrunk by an element, or one number
+    negated (-x - 1) or written as a string (of an array of numbers, only the first)."""
+    def places(value, at=()):
+        if isinstance(value, dict):
+            for k, v in value.items():
+                yield from places(v, at + (k,))
+        elif isinstance(value, list):
+            yield at, value
+            for i, v in enumerate(value):
+                if i == 0 or not isinstance(v, (int, float)):
+                    yield from places(v, at + (i,))
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            yield at, value
+    for at, value in places(document):
+        if isinstance(value, list):
+            if value:
+                m = copy.deepcopy(document)
+                at_path(m, at).append(copy.deepcopy(value[-1]))
+                yield "%s grown" % (at,), m
+                m = copy.deepcopy(document)
+                at_path(m, at).pop()
+                yield "%s shrunk" % (at,), m
+        else:
+            for what, new in (("negated", -value - 1), ("as a string", str(value))):
+                m = copy.deepcopy(document)
+                at_path(m, at[:-1])[at[-1]] = new
+                yield "%s %s" % (at, what), m
+
+
 with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
     t = pathlib.Path(tmp)
 
@@ -407,7 +439,7 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
         problem("only %d of %d corpus models accepted by the tool" % (len(accepted), len(corpus)))
 
     # --- 4. every node type, and the keys of each ---------------------------------------------
-    mutants = disagreements = 0
+    mutants = disagreements = value_checked = value_accepted = value_refused_by_both = 0
     for name, root in EVERY_NODE.items():
         document = model_document(root)
         if name == "sphere":
@@ -428,8 +460,19 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
                 problem("%s model, %s: the tool %s it, the schema %s it"
                         % (name, what, "accepts" if tool else "refuses",
                            "accepts" if ours else "refuses"))
-    if mutants < 300:
-        problem("only %d key mutants" % mutants)
+        # Lengths, signs and types: whatever the tool accepts, the schema must accept (it may
+        # accept more: relations between fields are left to the reader).
+        for what, m in value_mutants(document):
+            value_checked += 1
+            if tool_accepts(write("mutant.json", m)):
+                value_accepted += 1
+                if not VALIDATOR["model"].is_valid(m):
+                    problem("%s model, %s: the tool accepts it, the schema refuses it: %s"
+                            % (name, what, errors(VALIDATOR["model"], m)[0]))
+            elif not VALIDATOR["model"].is_valid(m):
+                value_refused_by_both += 1
+    if mutants < 300 or value_checked < 500:
+        problem("only %d key mutants and %d value mutants" % (mutants, value_checked))
 
     # --- 5. invalid documents -----------------------------------------------------------------
     patch = EVERY_NODE["bernstein_patch"]
@@ -525,9 +568,12 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
 total = sum(validated.values())
 print("check_schemas: %d documents the commands wrote validated (%d models, %d scenes, %d "
       "reports); %d valid hand-made and corpus models (%d of %d corpus models accepted by the "
-      "tool, %d node types and forms); %d key mutants, %d disagreements"
+      "tool, %d node types and forms); %d key mutants, %d disagreements; %d value mutants: %d "
+      "accepted by both, %d refused by both, %d refused by the tool alone (field relations)"
       % (total, validated["model"], validated["scene"], validated["report"], len(hand_made),
-         len(accepted), len(corpus), len(EVERY_NODE), mutants, disagreements))
+         len(accepted), len(corpus), len(EVERY_NODE), mutants, disagreements, value_checked,
+         value_accepted, value_refused_by_both,
+         value_checked - value_accepted - value_refused_by_both))
 if problems:
     print("check_schemas: %d problems" % len(problems))
     sys.exit(1)
