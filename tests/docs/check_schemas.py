@@ -7,17 +7,19 @@ this interpreter has no `jsonschema` module (Debian: python3-jsonschema, for /us
 
   1. the three schemas are valid draft 2020-12 schemas;
   2. the commands run on the bundled clouds (datasets/data) and on a cloud `sample` draws, into a
-     temporary folder: fit of several kinds (one failing, whose report says so), detect on the
+     temporary folder: fit of several kinds (two failing, whose reports say so), detect on the
      .xyz, .ply and .pcd clouds, reconstruct with and without a scene, verify (a verified model
      and a refused one), check --json, design, batch; every model, scene and report they write
      (and the JSON reconstruct, verify and check print) validates against its schema, each
      report also against the definition of its kind;
   3. every model of tests/fuzz/model_corpus that the tool accepts (`eval` exit 0) validates;
-  4. one hand-made model per node type and form: the tool and the schema accept it; for each
-     copy with one key dropped or one unknown key added (at every object of the document) the
-     tool and the schema agree (the schema is as strict as the reader on keys); each copy with
-     an array one element longer or shorter, a number negated or written as a string, that the
-     tool accepts, the schema accepts (the schema is never stricter than the reader);
+  4. one hand-made model per node type and form (the types of the reader's tables in
+     model/model.cc and model/primitives/primitive_kinds.cc, which must be the schema's): the
+     tool and the schema accept it; for each copy with one key dropped or one unknown key added
+     (at every object of the document) the tool and the schema agree (the schema is as strict as
+     the reader on keys); each copy with an array one element longer or shorter, a number
+     negated or written as a string, that the tool accepts, the schema accepts (the schema is
+     never stricter than the reader);
   5. hand-made invalid models, scenes and reports (unknown key, missing radius, wrong array
      lengths, out-of-range values, wrong types) are refused by the schema, and the models and
      scenes by the tool too.
@@ -26,6 +28,7 @@ import copy
 import json
 import os
 import pathlib
+import re
 import subprocess
 import sys
 import tempfile
@@ -88,7 +91,8 @@ try:  # jsonschema >= 4.18
             schema[n], default_specification=referencing.jsonschema.DRAFT202012))
         for n in schema)
     references = {"registry": registry}
-except ImportError:  # Debian 12's 4.10
+    jsonschema.Draft202012Validator({}, **references)
+except (ImportError, TypeError):  # Debian 12's 4.10: no registries yet
     references = None
 
 
@@ -439,6 +443,15 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
         problem("only %d of %d corpus models accepted by the tool" % (len(accepted), len(corpus)))
 
     # --- 4. every node type, and the keys of each ---------------------------------------------
+    # The node types: the reader's (its type tables), the schema's and the samples' are one set.
+    reader_types = set()
+    for source in ("model/model.cc", "model/primitives/primitive_kinds.cc"):
+        reader_types |= set(re.findall(r'NodeType::k\w+,\s*"(\w+)"', (ROOT / source).read_text()))
+    schema_types = set(schema["model"]["$defs"]["node"]["properties"]["type"]["enum"])
+    sample_types = {root["type"] for root in EVERY_NODE.values()}
+    if len(reader_types) < 20 or reader_types != schema_types or schema_types != sample_types:
+        problem("node types: the reader's %s, the schema's %s, the samples' %s"
+                % (sorted(reader_types), sorted(schema_types), sorted(sample_types)))
     mutants = disagreements = value_checked = value_accepted = value_refused_by_both = 0
     for name, root in EVERY_NODE.items():
         document = model_document(root)
