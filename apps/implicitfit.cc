@@ -8,8 +8,11 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <string>
+#include <vector>
 
 #include "apps/command.h"
+#include "apps/command_line_words.h"
 #include "apps/option_validators.h"
 #include "apps/output_guard.h"
 #include "datasets/clouds/cloud_file.h"
@@ -68,6 +71,11 @@ int main(int argc, char** argv) {
   actions["view"] = AddViewCommand(app);
 
   MakeNumberOptionsStrict(app);
+  const std::vector<std::string> words(argv + 1, argv + argc);
+  if (const std::string problem = UnknownCommandLineWord(app, words); !problem.empty()) {
+    std::cerr << problem << "\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -77,7 +85,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);  // prints the message
+    // One line, as every other error of the tool: "implicitfit fit: --out is required; ...".
+    const std::string command = CommandName(app, words);
+    std::cerr << "implicitfit" << (command.empty() ? "" : " " + command) << ": " << e.what()
+              << "; see implicitfit" << (command.empty() ? "" : " " + command) << " --help\n";
     return 2;
   }
   limits.max_points = max_points;

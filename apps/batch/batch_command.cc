@@ -25,7 +25,7 @@
 #include "apps/batch/batch_view.h"
 #include "apps/command.h"
 #include "apps/output_guard.h"
-#include "apps/fit_job.h"
+#include "apps/fit/fit_job.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/output_path.h"
@@ -42,7 +42,7 @@ struct BatchArgs {
   unsigned seed = 1;
   double threshold = 0.0;
   std::string estimator = "robust";
-  bool convex = false;  // Bernstein kinds (apps/fit_model_kinds.h)
+  bool convex = false;  // Bernstein kinds (apps/fit/fit_model_kinds.h)
   int degree = 0, cells = 0, continuity = 1;
   double cell = 0.0;
 };

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "apps/option_validators.h"
+#include "datasets/clouds/cloud_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/text_file.h"
 #include "fit/primitive/primitive_fitter.h"
@@ -60,13 +61,6 @@ void AddManifest(const std::string& manifest, std::vector<Entry>* entries) {
 }
 
 }  // namespace
-
-bool IsCloudFileName(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return ext == ".xyz" || ext == ".pwn" || ext == ".txt" || ext == ".ply" || ext == ".pcd";
-}
 
 std::vector<BatchInput> ExpandBatchInputs(const std::vector<std::string>& inputs,
                                           const std::vector<std::string>& manifests) {

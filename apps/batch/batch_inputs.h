@@ -43,7 +43,4 @@ Shard ParseShard(const std::string& text);
 // The inputs of one shard, in order.
 std::vector<BatchInput> SelectShard(const std::vector<BatchInput>& all, const Shard& shard);
 
-// True for the extensions the cloud readers accept (datasets/clouds/cloud_file.h).
-bool IsCloudFileName(const std::string& path);
-
 }  // namespace implicitfit

@@ -1,18 +1,20 @@
 #include "apps/batch/batch_runner.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <thread>
 
 #include "apps/batch/batch_job.h"
-#include "apps/fit_job.h"
+#include "apps/fit/fit_job.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/model_file.h"
 #include "datasets/io/output_path.h"
@@ -211,6 +213,7 @@ BatchOutcome RunBatchJob(const BatchInput& in, const BatchOptions& o, const Batc
     fs::remove(report_path, ignored);
     out.status = BatchStatus::kError;
     out.error = e.what();
+    out.out_of_memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -258,17 +261,28 @@ std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
   std::vector<BatchOutcome> outcomes(inputs.size());
   std::atomic<size_t> next{0};
   std::mutex report_mutex;
+  std::vector<size_t> retry;  // out of memory beside other inputs
   const auto worker = [&]() {
     for (size_t i = next++; i < inputs.size(); i = next++) {
       outcomes[i] = ProcessBatchInput(inputs[i], options);
       std::lock_guard<std::mutex> lock(report_mutex);
-      if (on_done) on_done(outcomes[i]);
+      if (outcomes[i].out_of_memory)
+        retry.push_back(i);
+      else if (on_done)
+        on_done(outcomes[i]);
     }
   };
   const size_t threads = std::max<size_t>(1, std::min<size_t>(options.jobs, inputs.size()));
   // Threads that cannot start (system limits) leave their share to the others: the queue is
   // shared, so every input is still processed.
   RunWorkers(static_cast<int>(threads), [&](int) { worker(); });
+  // Inputs that ran out of memory beside the others (many jobs under an address-space limit:
+  // each thread's stack takes its share) run again one at a time, every worker finished.
+  std::sort(retry.begin(), retry.end());
+  for (size_t i : retry) {
+    outcomes[i] = ProcessBatchInput(inputs[i], options);
+    if (on_done) on_done(outcomes[i]);
+  }
   return outcomes;
 }
 

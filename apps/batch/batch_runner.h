@@ -1,4 +1,4 @@
-// Runs `implicitfit batch`: one primitive fit per input cloud (apps/fit_job.h), each input on its
+// Runs `implicitfit batch`: one primitive fit per input cloud (apps/fit/fit_job.h), each input on its
 // own, over a bounded pool of threads that take the next input as they finish (dynamic load
 // balancing; a cloud is read only when its job starts, so memory is bounded by the pool).
 // For an input named <name> (apps/batch/batch_inputs.h) in out_dir:
@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "apps/batch/batch_inputs.h"
-#include "apps/fit_model_kinds.h"
+#include "apps/fit/fit_model_kinds.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/primitive/primitive_fitter.h"
 
@@ -41,6 +41,9 @@ struct BatchOutcome {
   size_t inliers = 0, points = 0;
   double seconds = 0.0;  // wall time in this run
   std::string error;     // why it failed (empty when ok or skipped)
+  // It ran out of memory (std::bad_alloc) while other inputs ran beside it: RunBatch runs it
+  // again alone once every worker has finished (--jobs above what memory allows).
+  bool out_of_memory = false;
   bool HasFigures() const { return status != BatchStatus::kError; }
   bool Succeeded() const { return status == BatchStatus::kOk || status == BatchStatus::kSkipped; }
   // "<input>: <error>" (the input named once, also when the error already starts with it).
@@ -59,7 +62,7 @@ struct BatchOptions {
   bool scene = false;       // `--model scene`: one detection per input (apps/detect_job.h)
   DetectionOptions detect;  // used for every input when scene is set
   bool solid = false;       // `--model solid`: one reconstruction per input (detect.seed used)
-  // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit_model_kinds.h): when set,
+  // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit/fit_model_kinds.h): when set,
   // every input is fitted by model_fit(cloud path) instead of `fit`; resume then also requires
   // the model's root to be model_kind and, with require_certified (--convex), the report to
   // say certified_convex.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <iterator>
+#include <string>
 #include <stdexcept>
 
 #include "datasets/io/io_error.h"
@@ -16,22 +18,34 @@ namespace implicitfit {
 
 namespace {
 
-PointCloud ReadByExtension(const std::string& path, CloudFileInfo* info) {
+std::string LowerCaseExtension(const std::string& path) {
   const size_t dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  const size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+#ifdef IMPLICITFIT_HAVE_PCL
+const char* const kExtensions[] = {"xyz", "pwn", "txt", "xyzl", "ply", "pcd"};
+#else
+const char* const kExtensions[] = {"xyz", "pwn", "txt", "xyzl"};
+#endif
+
+PointCloud ReadByExtension(const std::string& path, CloudFileInfo* info) {
+  const std::string ext = LowerCaseExtension(path);
   if (ext == "xyz" || ext == "pwn" || ext == "txt") return ReadXyzFile(path, info);
   if (ext == "xyzl") return ReadXyzFile(path, info, XyzColumns::kLabelled);
 #ifdef IMPLICITFIT_HAVE_PCL
   if (ext == "ply") return ReadPlyFile(path, info);
   if (ext == "pcd") return ReadPcdFile(path, info);
-  throw FileError(
-      path, "unsupported cloud format '." + ext + "' (supported: .xyz .pwn .txt .xyzl .ply .pcd)");
+  throw FileError(path, "unsupported cloud format '." + ext + "' (supported: " +
+                            CloudFileExtensions() + ")");
 #else
-  throw FileError(path,
-                  "unsupported cloud format '." + ext +
-                      "' (supported: .xyz .pwn .txt .xyzl; .ply and .pcd need a build with PCL)");
+  throw FileError(path, "unsupported cloud format '." + ext + "' (supported: " +
+                            CloudFileExtensions() + "; .ply and .pcd need a build with PCL)");
 #endif
 }
 
@@ -61,6 +75,17 @@ PointCloud ReadAndRepair(const std::string& path, CloudFileInfo& out) {
 }  // namespace
 
 void SetCloudReadObserver(CloudReadObserver observer) { Observer() = std::move(observer); }
+
+bool IsCloudFileName(const std::string& path) {
+  const std::string ext = LowerCaseExtension(path);
+  return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
+}
+
+std::string CloudFileExtensions() {
+  std::string list;
+  for (const char* ext : kExtensions) list += std::string(list.empty() ? "." : " .") + ext;
+  return list;
+}
 
 PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info) {
   CloudFileInfo local;

@@ -19,6 +19,12 @@ namespace implicitfit {
 
 PointCloud ReadCloudFile(const std::string& path, CloudFileInfo* info = nullptr);
 
+// Whether ReadCloudFile reads `path` by its extension (case-insensitive): the one list, which
+// `batch` also uses to pick the clouds of a folder.
+bool IsCloudFileName(const std::string& path);
+// The extensions it reads, e.g. ".xyz .pwn .txt .xyzl .ply .pcd".
+std::string CloudFileExtensions();
+
 // Called after every successful ReadCloudFile (from the reading thread), e.g. for the command
 // line to tell the user how many records were dropped (info.dropped_missing: NaN coordinates,
 // the "no measurement" of PCD and range grids). Process-wide; empty by default.

@@ -74,8 +74,11 @@
 // primitive explaining it best (|f| < tau; among those with agreeing normals the smallest |f|,
 // else, for points next to a primitive's support, the smallest |f| whatever the normal: creases
 // where estimated normals are smeared; |f| within sigma of each other, a point on the joint of
-// two surfaces, go to the normal closer to grad f); each support is cut to its largest connected
-// component; primitives under min_points are dropped; every primitive gets the maximum-likelihood
+// two surfaces, go to the normal closer to grad f; a sphere's or cylinder's candidates include
+// the rest of its ball or circle beyond the support's box); a plane's support is cut to its
+// largest connected component (a merged plane's, and a curved primitive's, keep every part of
+// min_points: a narrow ring falls into arcs over the neighbour graph, whose links run to the
+// faces beside it); primitives under min_points are dropped; every primitive gets the maximum-likelihood
 // refinement of `fit` on its points (fit/primitive/primitive_fitter.h, Ceres, with standard deviations).
 #pragma once
 

@@ -12,6 +12,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "support/run_command.h"
@@ -523,5 +524,31 @@ TEST_F(BatchCommand, MpiRanksGiveTheSameModelsAsOneProcess) {
       << again.out << again.err;
 }
 #endif
+
+}  // namespace
+
+namespace {
+
+// A folder stands for every cloud `fit` reads: the labelled .xyzl of Fit4CAD-style data and
+// extensions in any case too (docs/batch.md), nothing else.
+TEST_F(BatchCommand, FolderTakesEveryExtensionFitReads) {
+  const std::string dir = testsupport::ScratchDir("batch_folder_kinds");
+  const std::string out = testsupport::ScratchDir("batch_folder_kinds_out");
+  std::istringstream cloud(Slurp((*truths_)[0].path));
+  std::ostringstream labelled;
+  for (std::string line; std::getline(cloud, line);) {
+    std::istringstream fields(line);
+    double x, y, z;
+    if (fields >> x >> y >> z) labelled << x << " " << y << " " << z << " 3\n";
+  }
+  WriteText(dir + "/labelled.xyzl", labelled.str());
+  fs::copy_file((*truths_)[1].path, dir + "/upper.XYZ");
+  WriteText(dir + "/notes.md", "not a cloud\n");
+  const auto r = RunCommand(kCli + " batch " + dir + " --model sphere --out-dir " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 inputs: 2 fitted, 0 skipped, 0 failed"), std::string::npos) << r.out;
+  const json model = ReadJson(out + "/labelled.model.json");
+  EXPECT_NEAR(model["root"]["radius"].get<double>(), (*truths_)[0].radius, 0.01);
+}
 
 }  // namespace

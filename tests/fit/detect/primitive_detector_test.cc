@@ -224,11 +224,45 @@ TEST(PrimitiveDetector, Fit4CadRecall) {
                 m.truth_counted, m.precise, m.detected_counted, m.mean_iou);
     truth += m.truth_counted, recovered += m.recovered;
   }
-  // 2026-11-28: 51 of 54 (missed: PC33's one-row cylinder ring, PC21's chamfer ring, PC155's
-  // face coplanar with another: see README); 50 before the leftover pass found PC34's two-row
-  // ring; 47 with the tangent-plane noise.
+  // 2026-12-02: 52 of 54 (missed: PC21's chamfer ring, PC155's face coplanar with another;
+  // PC33's one-row cylinder ring since its halves within a spacing are joined); 51 before; 50
+  // before the leftover pass found PC34's two-row ring; 47 with the tangent-plane noise.
   EXPECT_EQ(truth, 54);
-  EXPECT_GE(recovered, 51);
+  EXPECT_GE(recovered, 52);
+}
+
+// PC33's cylinder ring (r 5.5, 0.4 high, 143 of 1 500 points, between a sphere and a plane):
+// its points' nearest neighbours lie on the faces beside it, so over the neighbour graph the
+// ring fell into two halves 0.26 apart (spacing 0.50) and the smaller was dropped (IoU 0.49).
+// Truth from the file's labels: the ring is one support of a cylinder of radius 5.5.
+TEST(PrimitiveDetector, Fit4CadPc33NarrowRingIsOneSupport) {
+  const std::string path = std::string(IMPLICITFIT_SHARED_DATA) + "/fit4cad/fit4cad_test_PC33.xyzl";
+  if (!std::ifstream(path)) GTEST_SKIP() << "no " << path;
+  CloudFileInfo info;
+  PointCloud cloud = ReadCloudFile(path, &info);
+  EnsureOrientedNormals(&cloud);
+  const DetectionResult r = Detect(cloud);
+  int ring = 0;
+  for (int l : info.labels) ring += l == 2;
+  ASSERT_EQ(ring, 143);
+  bool found = false;
+  for (size_t k = 0; k < r.primitives.size(); ++k) {
+    const DetectedPrimitive& p = r.primitives[k];
+    if (p.kind != NodeType::kCylinder) continue;
+    found = true;
+    EXPECT_NEAR(p.parameters[6], 5.5, 0.055);  // point (3), axis (3), radius
+    int on_ring = 0, off_surface = 0;
+    for (int i : p.points) {
+      on_ring += info.labels[i] == 2;
+      // The truth's cylinder: x^2 + y^2 = 5.5^2 (the file's implicit equation). Points of the
+      // faces beside it on their common edges are on it too.
+      const Eigen::Vector3d& x = cloud.points[i];
+      off_surface += std::abs(std::hypot(x.x(), x.y()) - 5.5) > 0.06;
+    }
+    EXPECT_GE(on_ring, 0.9 * ring) << p.points.size() << " points";
+    EXPECT_EQ(off_surface, 0);
+  }
+  EXPECT_TRUE(found);
 }
 
 TEST(PrimitiveDetector, CgalIcosahedronFaces) {

@@ -1,4 +1,4 @@
-#include "apps/fit_job.h"
+#include "apps/fit/fit_job.h"
 
 #include <sstream>
 

@@ -6,14 +6,15 @@
 // cloud's noise and spacing). Exit 0 on success; 1 when the fit fails (too few inliers, no
 // convergence, no real primitive of the kind) with the reason, and no model file; 2 for
 // invalid usage or input.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
-#include "apps/fit_job.h"
-#include "apps/fit_model_kinds.h"
+#include "apps/fit/fit_job.h"
+#include "apps/fit/fit_model_kinds.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
@@ -53,10 +54,7 @@ CommandAction AddFitCommand(CLI::App& app) {
                   "Point cloud (.xyz/.pwn/.txt/.xyzl/.ply/.pcd; normals estimated when absent)")
       ->required();
   auto* model_opt =
-      cmd->add_option("--model", a->kind,
-                      "Kind to fit: plane, sphere, cylinder, cone, torus, quadric-patch, "
-                      "cubic-patch, box, paraboloid, capsule, patch-mesh, partition, "
-                      "bspline-surface, bspline-volume");
+      cmd->add_option("--model", a->kind, "Kind to fit: " + FitCommandKindList());
   auto* init_opt = cmd->add_option("--init", a->init,
                                    "Fit every free parameter of this model tree (primitive "
                                    "parameters, delta and epsilon, control points)");
@@ -141,6 +139,9 @@ CommandAction AddFitCommand(CLI::App& app) {
       throw InputError(
           "--through-vertex, --vertex-normal and --through-edge apply to quadric-patch "
           "and cubic-patch");
+    const std::vector<std::string>& kinds = FitCommandKinds();
+    if (!a->kind.empty() && std::find(kinds.begin(), kinds.end(), a->kind) == kinds.end())
+      throw InputError("--model " + a->kind + ": unknown kind (" + FitCommandKindList() + ")");
     if (a->kind == "partition") return RunPartitionFit(request);
     if (IsSplineKind(a->kind)) return RunSplineFit(request);
     if (IsMeshKind(a->kind)) return RunMeshFit(request);

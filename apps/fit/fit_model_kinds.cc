@@ -1,4 +1,4 @@
-#include "apps/fit_model_kinds.h"
+#include "apps/fit/fit_model_kinds.h"
 
 #include <cmath>
 #include <cstdio>
@@ -95,6 +95,20 @@ void ParseCounts(const std::string& text, int n, const std::string& example, int
 
 bool IsPatchKind(const std::string& kind) {
   return kind == "quadric-patch" || kind == "cubic-patch";
+}
+
+const std::vector<std::string>& FitCommandKinds() {
+  static const std::vector<std::string> kinds = {
+      "plane",           "sphere",        "cylinder",   "cone",    "torus",      "quadric-patch",
+      "cubic-patch",     "box",           "paraboloid", "capsule", "patch-mesh", "partition",
+      "bspline-surface", "bspline-volume"};
+  return kinds;
+}
+
+std::string FitCommandKindList() {
+  std::string list;
+  for (const std::string& kind : FitCommandKinds()) list += (list.empty() ? "" : ", ") + kind;
+  return list;
 }
 
 int RunTreeFit(const ModelFitRequest& request) {

@@ -71,6 +71,13 @@ ModelKindFit FitPatchCloud(const ModelFitRequest& request);
 ModelKindFit FitMeshCloud(const ModelFitRequest& request);
 
 bool IsPatchKind(const std::string& kind);
+
+// Every kind `fit --model` takes, in the order its help lists them: the primitives of the
+// robust fitter, the Bernstein patches, the shapes, the patch mesh, the soft partition and the
+// splines. The help text and the "unknown kind" error are built from this one list.
+const std::vector<std::string>& FitCommandKinds();
+// FitCommandKinds() joined with ", ".
+std::string FitCommandKindList();
 // The tree fitter's options of the command line: the defaults, with the work limit
 // (fit/tree/tree_fitter.h: kMaxTreeFitWork).
 inline TreeFitOptions CommandLineTreeFitOptions() {
@@ -92,17 +99,17 @@ void AddTreeFitFigures(const TreeFitResult& r, const Model& start,
 // and `example` otherwise.
 void ParseCounts(const std::string& text, int n, const std::string& example, int* counts);
 // --model bspline-surface --grid NUxNV [--degree p] and --model bspline-volume --cells n
-// [--degree k] [--convex] (apps/fit_spline_kinds.cc, fit/splines/).
+// [--degree k] [--convex] (apps/fit/fit_spline_kinds.cc, fit/splines/).
 bool IsSplineKind(const std::string& kind);
 int RunSplineFit(const ModelFitRequest& request);
 // --model partition --grid AxBxC [--child plane|quadric]: the linear start of
-// fit/tree/partition_start.h, then the tree fitter (apps/fit_partition_kind.cc).
+// fit/tree/partition_start.h, then the tree fitter (apps/fit/fit_partition_kind.cc).
 int RunPartitionFit(const ModelFitRequest& request);
 int RunShapeFit(const ModelFitRequest& request, unsigned seed);
 int RunTreeFit(const ModelFitRequest& request);
 int RunPatchFit(const ModelFitRequest& request);
 // --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1] [--convex]: a
-// Bernstein mesh (fit/bernstein/bernstein_mesh_fitter.h), apps/fit_mesh_kind.cc.
+// Bernstein mesh (fit/bernstein/bernstein_mesh_fitter.h), apps/fit/fit_mesh_kind.cc.
 bool IsMeshKind(const std::string& kind);
 int RunMeshFit(const ModelFitRequest& request);
 
