@@ -12,7 +12,8 @@ packages=(cmake g++ make libceres-dev libeigen3-dev libpcl-dev libflann-dev libo
           libglpk-dev  # GLPK: exact LPs of the minimum-zone fits
           libjs-three  # three.js, inlined into the pages of `implicitfit view` (view/)
           chromium  # headless Chromium: `view --png` and the browser tests (tests/view/)
-          chromium-driver python3-selenium)  # the browser tests drive one Chromium
+          chromium-driver python3-selenium  # the browser tests drive one Chromium
+          python3-jsonschema)  # tests/docs/check_schemas.py: the JSON Schemas of docs/schemas
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
