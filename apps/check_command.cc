@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/report_header.h"
 #include "apps/check_mesh.h"
 #include "apps/command.h"
 #include "datasets/io/io_error.h"
@@ -175,7 +176,7 @@ int Run(const CheckOptions& options) {
                        {"conservative", summary.conservative},
                        {"confirmed", summary.confirmed},
                        {"undecided", summary.undecided}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << WithReportHeader(out).dump(2) << "\n";
   } else {
     std::printf("%-24s %-28s %6s %6s %15s", "file", "patch", "degree", "convex", "min_eigenvalue");
     if (options.sample > 0) std::printf(" %11s %10s", "zero_points", "violations");

@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "apps/command.h"
+#include "apps/report_header.h"
 #include "apps/detect_job.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
@@ -95,7 +96,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
       d.report["score"]["truth"] = truth.source;
       std::printf("score against %s: %s\n", truth.source.c_str(), s.Line().c_str());
     }
-    if (!a->report.empty()) WriteFileAtomically(a->report, d.report.dump(2) + "\n");
+    if (!a->report.empty()) WriteReportFile(a->report, d.report);
     if (d.scene.primitives.empty()) {
       std::cerr << "implicitfit detect: " << a->cloud << ": no primitive found"
                 << (d.degenerate ? " (too few points to estimate normals)" : "") << "\n";

@@ -15,6 +15,7 @@
 #include "apps/command_line_words.h"
 #include "apps/option_validators.h"
 #include "apps/output_guard.h"
+#include "apps/report_header.h"
 #include "datasets/clouds/cloud_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/read_limits.h"
@@ -106,6 +107,7 @@ int main(int argc, char** argv) {
   for (auto& [name, action] : actions) {
     if (!app.got_subcommand(name)) continue;
     try {
+      SetReportCommand(*app.get_subcommand(name), IMPLICITFIT_VERSION);
       CommandRun run(name, *app.get_subcommand(name));
       return run.Finish(action());
     } catch (const InputError& e) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/report_header.h"
 #include "apps/progress_printer.h"
 #include "apps/reconstruct_job.h"
 #include "apps/view_outputs.h"
@@ -122,7 +123,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       if (!a->mesh.empty()) WriteMeshPlyFile(mesh, a->mesh);
     }
     if (!a->report.empty())  // also when verification failed: the reasons
-      WriteFileAtomically(a->report, report.dump(2) + "\n");
+      WriteReportFile(a->report, report);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.success) {
@@ -133,7 +134,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       return 1;
     }
     if (!a->view.empty()) WriteReconstructionView(job, a->cloud, a->view);
-    std::cout << report.dump(2) << "\n";
+    std::cout << WithReportHeader(report).dump(2) << "\n";
     PrintSummary("reconstruct", a->quiet, true, "verified solid", seconds,
                  Details(r, job.primitives.size()) + " -> " + a->out);
     return 0;

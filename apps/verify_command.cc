@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
+#include "apps/report_header.h"
 #include "apps/progress_printer.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
@@ -49,8 +50,8 @@ CommandAction AddVerifyCommand(CLI::App& app) {
     report["model"] = a->model;
     report["cloud"] = a->cloud;
     report["normals"] = normals;
-    if (!a->report.empty()) WriteFileAtomically(a->report, report.dump(2) + "\n");
-    std::cout << report.dump(2) << "\n";
+    if (!a->report.empty()) WriteReportFile(a->report, report);
+    std::cout << WithReportHeader(report).dump(2) << "\n";
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     PrintSummary("verify", a->quiet, v.verified, a->model + (v.verified ? ": verified" : ": not verified"),

@@ -1,4 +1,5 @@
 #include "apps/batch/batch_runner.h"
+#include "apps/report_header.h"
 
 #include <algorithm>
 #include <atomic>
@@ -207,7 +208,7 @@ BatchOutcome RunBatchJob(const BatchInput& in, const BatchOptions& o, const Batc
     if (out.status != BatchStatus::kOk)
       for (const std::string& path : job.results) fs::remove(path, ignored);
     report["batch_settings"] = o.settings;
-    WriteFileAtomically(report_path, report.dump(2) + "\n");
+    WriteReportFile(report_path, report, in.path);
   } catch (const std::exception& e) {
     for (const std::string& path : job.results) fs::remove(path, ignored);
     fs::remove(report_path, ignored);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command.h"
+#include "apps/report_header.h"
 #include "apps/fit/fit_job.h"
 #include "apps/fit/fit_model_kinds.h"
 #include "apps/view_outputs.h"
@@ -155,7 +156,7 @@ CommandAction AddFitCommand(CLI::App& app) {
     SetEstimatorFromArgument(a->estimator, &options);
     const CloudFit fit = FitCloudFile(a->cloud, options);
     const PrimitiveFitResult& result = fit.result;
-    if (!a->report.empty()) WriteFileAtomically(a->report, fit.report.dump(2) + "\n");
+    if (!a->report.empty()) WriteReportFile(a->report, fit.report);
     if (!result.success) {
       std::cerr << "implicitfit fit: " << a->cloud << ": " << NodeTypeName(options.kind)
                 << " fit failed: " << result.message << "\n";

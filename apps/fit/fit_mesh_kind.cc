@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/fit/fit_model_kinds.h"
+#include "apps/report_header.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -63,7 +64,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
 int RunMeshFit(const ModelFitRequest& request) {
   const ModelKindFit fit = FitMeshCloud(request);
   const nlohmann::json& rep = fit.report;
-  if (!request.report.empty()) WriteFileAtomically(request.report, rep.dump(2) + "\n");
+  if (!request.report.empty()) WriteReportFile(request.report, rep);
   if (!fit.success) {
     std::cerr << "implicitfit fit: " << request.cloud << ": patch-mesh fit failed: " << fit.message
               << "\n";

@@ -1,4 +1,5 @@
 #include "apps/fit/fit_model_kinds.h"
+#include "apps/report_header.h"
 
 #include <cmath>
 #include <cstdio>
@@ -21,7 +22,7 @@ namespace implicitfit {
 namespace {
 
 void Finish(const ModelFitRequest& request, const Model& model, const nlohmann::json& report) {
-  if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+  if (!request.report.empty()) WriteReportFile(request.report, report);
   WriteModelFile(model, request.out);
   std::printf("%s\n", ModelToJson(model)["root"].dump().c_str());
 }
@@ -118,7 +119,7 @@ int RunTreeFit(const ModelFitRequest& request) {
   const TreeFitResult r = FitModelTree(init, cloud.points, cloud.normals, CommandLineTreeFitOptions());
   const nlohmann::json report = r.ToJson(normals);
   if (!r.success) {
-    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    if (!request.report.empty()) WriteReportFile(request.report, report);
     std::cerr << "implicitfit fit: " << request.cloud << ": model tree fit failed: " << r.message
               << "\n";
     return 1;
@@ -159,7 +160,7 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
   if (!start.success) {
     report["success"] = false;
     report["message"] = start.message;
-    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    if (!request.report.empty()) WriteReportFile(request.report, report);
     std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind
               << " fit failed: " << start.message << "\n";
     return 1;
@@ -167,7 +168,7 @@ int RunShapeFit(const ModelFitRequest& request, unsigned seed) {
   const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, CommandLineTreeFitOptions());
   AddTreeFitFigures(r, start.model, cloud.points, normals, &report);
   if (!r.success) {
-    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    if (!request.report.empty()) WriteReportFile(request.report, report);
     std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind
               << " fit failed: " << r.message << "\n";
     return 1;
@@ -206,7 +207,7 @@ int RunPatchFit(const ModelFitRequest& request) {
   const ModelKindFit fit = FitPatchCloud(request);
   const nlohmann::json& report = fit.report;
   if (!fit.success) {
-    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    if (!request.report.empty()) WriteReportFile(request.report, report);
     std::cerr << "implicitfit fit: " << request.cloud << ": patch fit failed: " << fit.message
               << "\n";
     return 1;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/fit/fit_model_kinds.h"
+#include "apps/report_header.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -59,7 +60,7 @@ int RunPartitionFit(const ModelFitRequest& request) {
   auto fail = [&](const std::string& message) {
     report["success"] = false;
     report["message"] = message;
-    if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+    if (!request.report.empty()) WriteReportFile(request.report, report);
     std::cerr << "implicitfit fit: " << request.cloud << ": partition fit failed: " << message
               << "\n";
     return 1;
@@ -69,7 +70,7 @@ int RunPartitionFit(const ModelFitRequest& request) {
   const TreeFitResult r = FitModelTree(start.model, cloud.points, cloud.normals, CommandLineTreeFitOptions());
   AddTreeFitFigures(r, start.model, cloud.points, normals, &report);
   if (!r.success) return fail(r.message);
-  if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+  if (!request.report.empty()) WriteReportFile(request.report, report);
   WriteModelFile(r.model, request.out);
   std::printf("%s\n", ModelToJson(r.model)["root"].dump().c_str());
   std::printf(

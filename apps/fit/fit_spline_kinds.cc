@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/fit/fit_model_kinds.h"
+#include "apps/report_header.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -20,7 +21,7 @@ namespace {
 
 int Finish(const ModelFitRequest& request, bool success, const std::string& message,
            const Model& model, const nlohmann::json& report) {
-  if (!request.report.empty()) WriteFileAtomically(request.report, report.dump(2) + "\n");
+  if (!request.report.empty()) WriteReportFile(request.report, report);
   if (!success) {
     std::cerr << "implicitfit fit: " << request.cloud << ": " << request.kind
               << " fit failed: " << message << "\n";

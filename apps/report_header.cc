@@ -1,0 +1,124 @@
+#include "apps/report_header.h"
+
+#include <mutex>
+#include <vector>
+
+#include "apps/option_validators.h"
+#include "apps/output_guard.h"
+#include "datasets/clouds/cloud_file.h"
+#include "datasets/io/atomic_file.h"
+
+namespace implicitfit {
+namespace {
+
+struct ReportCommand {
+  std::string job, tool_version, input;
+  nlohmann::json settings = nlohmann::json::object();
+};
+
+ReportCommand& Current() {
+  static ReportCommand command;
+  return command;
+}
+
+// A command-line value as JSON: numbers as numbers (the strict decimal form every numeric
+// option takes), the rest as strings.
+nlohmann::json ValueOf(const std::string& text) {
+  if (!text.empty() && StrictNumberProblem(text, false, true).empty()) {
+    if (StrictNumberProblem(text, true, true).empty()) {
+      try {
+        return std::stoll(text);
+      } catch (const std::out_of_range&) {
+      }
+    }
+    return std::stod(text);
+  }
+  return text;
+}
+
+void AddOptions(CLI::App& command, const CommandFiles& files, nlohmann::json* settings) {
+  for (CLI::Option* option : command.get_options()) {
+    const std::string name = option->get_single_name();
+    if (name == "help" || name == "help-all" || name == "version" || !option->nonpositional())
+      continue;
+    bool is_file = false;
+    for (const std::string& value : option->results())
+      for (const auto* list : {&files.inputs, &files.outputs})
+        for (const std::string& file : *list) is_file = is_file || file == value;
+    if (is_file) continue;
+    if (option->get_items_expected_max() == 0) {  // a flag
+      (*settings)[name] = option->count() > 0;
+      continue;
+    }
+    std::vector<std::string> values = option->results();
+    const bool list = option->get_items_expected_max() > 1;
+    if (values.empty()) {
+      // Not given: the value its variable holds after parsing, which is the default (an
+      // option without one, e.g. an optional file, is left out).
+      option->capture_default_str();
+      const std::string value = option->get_default_str();
+      if (value == "[]") {
+        (*settings)[name] = nlohmann::json::array();
+        continue;
+      }
+      if (value.empty()) continue;
+      values = {value};
+    }
+    if (values.size() == 1 && !list) {
+      (*settings)[name] = ValueOf(values[0]);
+    } else {
+      nlohmann::json list = nlohmann::json::array();
+      for (const std::string& v : values) list.push_back(ValueOf(v));
+      (*settings)[name] = list;
+    }
+  }
+}
+
+}  // namespace
+
+nlohmann::json CommandSettings(CLI::App& command) {
+  nlohmann::json settings = nlohmann::json::object();
+  const CommandFiles files = FilesOfCommand(command);
+  AddOptions(command, files, &settings);
+  if (CLI::App* tool = command.get_parent()) AddOptions(*tool, files, &settings);
+  return settings;
+}
+
+void SetReportCommand(CLI::App& command, const std::string& tool_version) {
+  ReportCommand& c = Current();
+  c.job = command.get_name();
+  c.tool_version = tool_version;
+  c.settings = CommandSettings(command);
+  const CommandFiles files = FilesOfCommand(command);
+  c.input.clear();
+  for (const std::string& file : files.inputs)
+    if (c.input.empty() && IsCloudFileName(file)) c.input = file;
+  if (c.input.empty() && !files.inputs.empty()) c.input = files.inputs.front();
+}
+
+nlohmann::json WithReportHeader(nlohmann::json report, const std::string& input) {
+  const ReportCommand& c = Current();
+  if (!report.is_object()) return report;
+  const auto set = [&](const char* key, const nlohmann::json& value) {
+    if (!report.contains(key)) report[key] = value;
+  };
+  set("format", "implicitfit-report");
+  set("format_version", 1);
+  set("job", c.job.empty() ? nullptr : nlohmann::json(c.job));
+  set("tool_version", c.tool_version);
+  nlohmann::json in = {{"path", input.empty() ? c.input : input}};
+  in["points"] = report.contains("points") ? report["points"] : nlohmann::json(nullptr);
+  in["normals"] = report.contains("normals") ? report["normals"] : nlohmann::json(nullptr);
+  set("input", in);
+  set("settings", c.settings);
+  if (c.settings.contains("seed")) set("seed", c.settings["seed"]);
+  set("units", {{"length", "input"}, {"angle", "degree"}});
+  return report;
+}
+
+void WriteReportFile(const std::string& path, const nlohmann::json& report,
+                     const std::string& input) {
+  WriteFileAtomically(path, WithReportHeader(report, input).dump(2) + "\n");
+}
+
+}  // namespace implicitfit
