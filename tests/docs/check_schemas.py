@@ -596,6 +596,11 @@ with tempfile.TemporaryDirectory(prefix="check_schemas.") as tmp:
         "a verify report without pieces": {k: v for k, v in verify_report.items()
                                            if k != "pieces"},
         "a check report whose file has no verdict": no_verdict,
+        "a report without its format": {k: v for k, v in fit_report.items() if k != "format"},
+        "a report of format version 2": dict(fit_report, format_version=2),
+        "a report whose input has no path": dict(fit_report, input={"points": 1, "normals": ""}),
+        "a fit report without its seed": {k: v for k, v in fit_report.items() if k != "seed"},
+        "a report in other units": dict(detect_report, units={"length": "mm", "angle": "degree"}),
     }
     for what, document in invalid_reports.items():
         if VALIDATOR["report"].is_valid(document):
