@@ -1,6 +1,7 @@
 #include "apps/report_header.h"
 
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "apps/option_validators.h"
@@ -96,24 +97,41 @@ void SetReportCommand(CLI::App& command, const std::string& tool_version) {
   if (c.input.empty() && !files.inputs.empty()) c.input = files.inputs.front();
 }
 
-nlohmann::json WithReportHeader(nlohmann::json report, const std::string& input) {
+namespace {
+
+template <typename Json>
+Json AddHeader(Json report, const std::string& input) {
   const ReportCommand& c = Current();
   if (!report.is_object()) return report;
-  const auto set = [&](const char* key, const nlohmann::json& value) {
+  const auto set = [&](const char* key, const Json& value) {
     if (!report.contains(key)) report[key] = value;
   };
   set("format", "implicitfit-report");
   set("format_version", 1);
-  set("job", c.job.empty() ? nullptr : nlohmann::json(c.job));
+  set("job", c.job.empty() ? Json(nullptr) : Json(c.job));
   set("tool_version", c.tool_version);
-  nlohmann::json in = {{"path", input.empty() ? c.input : input}};
-  in["points"] = report.contains("points") ? report["points"] : nlohmann::json(nullptr);
-  in["normals"] = report.contains("normals") ? report["normals"] : nlohmann::json(nullptr);
+  Json in = Json::object();
+  in["path"] = input.empty() ? c.input : input;
+  in["points"] = report.contains("points") ? report["points"] : Json(nullptr);
+  in["normals"] = report.contains("normals") ? report["normals"] : Json(nullptr);
   set("input", in);
-  set("settings", c.settings);
-  if (c.settings.contains("seed")) set("seed", c.settings["seed"]);
-  set("units", {{"length", "input"}, {"angle", "degree"}});
+  set("settings", Json(c.settings));
+  if (c.settings.contains("seed")) set("seed", Json(c.settings["seed"]));
+  Json units = Json::object();
+  units["length"] = "input";
+  units["angle"] = "degree";
+  set("units", units);
   return report;
+}
+
+}  // namespace
+
+nlohmann::json WithReportHeader(nlohmann::json report, const std::string& input) {
+  return AddHeader(std::move(report), input);
+}
+
+nlohmann::ordered_json WithReportHeader(nlohmann::ordered_json report, const std::string& input) {
+  return AddHeader(std::move(report), input);
 }
 
 void WriteReportFile(const std::string& path, const nlohmann::json& report,

@@ -25,6 +25,10 @@ void SetReportCommand(CLI::App& command, const std::string& tool_version);
 // `report` with the header; `input` is the cloud the report is about (batch: each input), or ""
 // for the command's own cloud argument.
 nlohmann::json WithReportHeader(nlohmann::json report, const std::string& input = "");
+// The same for a report whose key order is part of its contract (check --json): the header's
+// keys follow the report's own.
+nlohmann::ordered_json WithReportHeader(nlohmann::ordered_json report,
+                                        const std::string& input = "");
 
 // WriteFileAtomically(path, WithReportHeader(report, input), indented).
 void WriteReportFile(const std::string& path, const nlohmann::json& report,
