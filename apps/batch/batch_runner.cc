@@ -1,12 +1,15 @@
 #include "apps/batch/batch_runner.h"
 #include "apps/report_header.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <new>
 #include <nlohmann/json.hpp>
@@ -254,6 +257,25 @@ BatchOutcome ProcessBatchInput(const BatchInput& in, const BatchOptions& o) {
   return RunBatchJob(in, o, job);
 }
 
+namespace {
+
+// Under an address-space limit (ulimit -v, RLIMIT_AS), each thread's stack reserves
+// RLIMIT_STACK of it (glibc's default for new threads; 8 MiB when unlimited): at most a quarter
+// of the limit goes to stacks, the rest is left to the fits. `--jobs 300` under 1.2 GiB had 140
+// threads start, their stacks taking 1.1 GiB, and the fits failed with std::bad_alloc.
+size_t ThreadsThatFitTheAddressSpace() {
+  rlimit space{}, stack{};
+  if (getrlimit(RLIMIT_AS, &space) != 0 || space.rlim_cur == RLIM_INFINITY)
+    return std::numeric_limits<size_t>::max();
+  rlim_t stack_bytes = 8u << 20;
+  if (getrlimit(RLIMIT_STACK, &stack) == 0 && stack.rlim_cur != RLIM_INFINITY &&
+      stack.rlim_cur > 0)
+    stack_bytes = stack.rlim_cur;
+  return std::max<size_t>(1, static_cast<size_t>(space.rlim_cur / 4 / stack_bytes));
+}
+
+}  // namespace
+
 std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
                                    const BatchOptions& options,
                                    const BatchProgressCallback& on_done) {
@@ -263,17 +285,28 @@ std::vector<BatchOutcome> RunBatch(const std::vector<BatchInput>& inputs,
   std::atomic<size_t> next{0};
   std::mutex report_mutex;
   std::vector<size_t> retry;  // out of memory beside other inputs
+  retry.reserve(inputs.size());  // no allocation while memory is short
   const auto worker = [&]() {
     for (size_t i = next++; i < inputs.size(); i = next++) {
-      outcomes[i] = ProcessBatchInput(inputs[i], options);
+      try {
+        outcomes[i] = ProcessBatchInput(inputs[i], options);
+      } catch (const std::bad_alloc&) {  // outside the job itself (its outcome's strings)
+        outcomes[i].out_of_memory = true;
+      }
       std::lock_guard<std::mutex> lock(report_mutex);
-      if (outcomes[i].out_of_memory)
+      if (outcomes[i].out_of_memory) {
         retry.push_back(i);
-      else if (on_done)
-        on_done(outcomes[i]);
+        continue;
+      }
+      try {
+        if (on_done) on_done(outcomes[i]);
+      } catch (const std::bad_alloc&) {  // the progress line: the summary still has it
+      }
     }
   };
-  const size_t threads = std::max<size_t>(1, std::min<size_t>(options.jobs, inputs.size()));
+  const size_t threads =
+      std::max<size_t>(1, std::min({static_cast<size_t>(options.jobs), inputs.size(),
+                                    ThreadsThatFitTheAddressSpace()}));
   // Threads that cannot start (system limits) leave their share to the others: the queue is
   // shared, so every input is still processed.
   RunWorkers(static_cast<int>(threads), [&](int) { worker(); });
