@@ -13,7 +13,8 @@ packages=(cmake g++ make libceres-dev libeigen3-dev libpcl-dev libflann-dev libo
           libjs-three  # three.js, inlined into the pages of `implicitfit view` (view/)
           chromium  # headless Chromium: `view --png` and the browser tests (tests/view/)
           chromium-driver python3-selenium  # the browser tests drive one Chromium
-          python3-jsonschema)  # tests/docs/check_schemas.py: the JSON Schemas of docs/schemas
+          python3-jsonschema  # tests/docs/check_schemas.py: the JSON Schemas of docs/schemas
+          cloudcompare)  # a real client of detect --ply (tests/apps/detect_cloudcompare_test.cc)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
