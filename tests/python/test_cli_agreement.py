@@ -1,6 +1,8 @@
 """The module and the command line on the same files: bit-identical models for the same seed,
 the same reports (but the timing, where the normals came from and the command line's header),
-the same certificates and values, the same detected primitives and reconstructed solids. Both run the same library code (fit/common/fit_report.h, model/certificates/convexity_report.h)."""
+the same certificates and values, the same detected primitives and reconstructed solids. Both
+run the same library code (fit/common/fit_report.h, model/certificates/convexity_report.h,
+jobs/)."""
 import json
 
 import numpy as np
