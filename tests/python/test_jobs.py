@@ -1,13 +1,12 @@
 """detect, reconstruct, mesh and fit's inliers through the module, on clouds sampled from known
 models: the expected values are the generating models' parameters and memberships."""
 import json
-import sys
-import threading
 
 import numpy as np
 import pytest
 
 import implicitfit
+from conftest import spins_during
 
 PLANE = {"type": "plane", "normal": [0, 0, 1], "offset": 0}
 SPHERE = {"type": "sphere", "center": [3, 0, 1.5], "radius": 1}
@@ -191,24 +190,4 @@ def test_the_gil_is_released_during_the_job(plane_and_sphere, job):
     call = {"detect": lambda: implicitfit.detect(points, normals),
             "reconstruct": lambda: implicitfit.reconstruct(points[3000:], normals[3000:]),
             "mesh": lambda: implicitfit.mesh(model(SPHERE), cell=0.01)}[job]
-    state = {"in_job": False, "seen": 0}
-
-    def work():
-        state["in_job"] = True
-        call()
-        state["in_job"] = False
-
-    # As tests/python/test_large_fit.py: with a 1 s switch interval this thread runs during the
-    # job only if the job releases the GIL.
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1.0)
-    try:
-        thread = threading.Thread(target=work)
-        thread.start()
-        while thread.is_alive():
-            if state["in_job"]:
-                state["seen"] += 1
-        thread.join()
-    finally:
-        sys.setswitchinterval(interval)
-    assert state["seen"] > 1000
+    assert spins_during(call) > 1000
