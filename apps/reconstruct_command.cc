@@ -2,7 +2,7 @@
 //                         [--report R.json] [--seed s] [--quiet] [--keep-unverified]
 // A solid model of the scan (fit/reconstruct/solid_reconstruction.h) from the primitives of a scene file
 // (datasets/io/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
-// with its defaults and the same seed (apps/reconstruct_job.h).
+// with its defaults and the same seed (jobs/reconstruct_job.h).
 // The solid verifies itself (fit/reconstruct/solid_verification.h) before anything but the report
 // is written: a solid that fails exits 1 with the reason and writes no model and no mesh;
 // --keep-unverified writes them anyway, the model marked {"verification": {"verified": false,
@@ -22,7 +22,7 @@
 #include "apps/command.h"
 #include "apps/report_header.h"
 #include "apps/progress_printer.h"
-#include "apps/reconstruct_job.h"
+#include "jobs/reconstruct_job.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "apps/detect_job.h"
-#include "apps/reconstruct_job.h"
+#include "jobs/detect_job.h"
+#include "jobs/reconstruct_job.h"
 #include "model/model.h"
 
 namespace implicitfit {

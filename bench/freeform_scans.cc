@@ -1,5 +1,5 @@
 // detect --freeform on real scans, from the user's path (the raw file: normals estimated and
-// oriented as `detect` does, no labels; apps/detect_job.cc's DetectCloudFile, the command's own
+// oriented as `detect` does, no labels; jobs/detect_job.cc's DetectCloudFile, the command's own
 // code): the PCL table-top stereo scan and the Stanford bunny's bun000 range scan
 // (../shared/data, read in place; skipped when absent).
 // Per scan: the primitives and what they leave unassigned, the smooth regions the freeform stage
@@ -26,7 +26,7 @@
 #include <sys/stat.h>
 #include <vector>
 
-#include "apps/detect_job.h"
+#include "jobs/detect_job.h"
 #include "datasets/normals/neighbourhoods.h"
 
 using namespace implicitfit;

@@ -28,7 +28,7 @@
 //   extended by less than that is still caught from the other side, truth -> mesh, by the
 //   neighbouring face), else |x - p| (x is beyond the sampled part of p's surface). Truth
 //   samples: the points.
-// End to end is apps/reconstruct_job.h's ReconstructCloud, what `reconstruct CLOUD` runs after
+// End to end is jobs/reconstruct_job.h's ReconstructCloud, what `reconstruct CLOUD` runs after
 // reading the cloud: detect, orientation, CSG, fit, verification; then the mesh (256 cells on
 // the longest side of the meshing box, --cells: the finest grid of PCL's Poisson at depth 8; the
 // box is `mesh`'s default, the verified solid's proven bounds enlarged by 10%; an unverified
@@ -62,7 +62,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/reconstruct_job.h"
+#include "jobs/reconstruct_job.h"
 #ifdef IMPLICITFIT_HAVE_CGAL_POISSON
 #include "bench/cgal_poisson.h"
 #endif
@@ -285,7 +285,7 @@ void RunImplicitfit(const SolidCloud& c, bool labelled, unsigned seed, const Fig
   try {
     implicitfit::SolidReconstruction r;
     size_t primitives = c.labelled.size();
-    if (!labelled) {  // apps/reconstruct_job.h: detect, then reconstruct
+    if (!labelled) {  // jobs/reconstruct_job.h: detect, then reconstruct
       implicitfit::PointCloud cloud;
       cloud.points = c.points;
       cloud.normals = c.normals_of_points;

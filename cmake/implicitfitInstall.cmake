@@ -1,11 +1,11 @@
 # `cmake --install` of implicitfit as a package others build on (find_package(implicitfit)):
 #   include/implicitfit/*.h            the public API: thin umbrella headers (include/implicitfit/)
-#   include/implicitfit/internal/...   the headers they include (model/, fit/, datasets/), as
+#   include/implicitfit/internal/...   the headers they include (model/, fit/, datasets/, jobs/), as
 #                                      Ceres installs ceres/internal/: not API, may change
-#   lib/libimplicitfit_*.a             the static libraries model, fit, datasets
+#   lib/libimplicitfit_*.a             the static libraries model, fit, datasets, jobs
 #   lib/cmake/implicitfit/             implicitfitConfig.cmake, its version file, the targets
 #   bin/implicitfit                    the command line
-# Targets: implicitfit::implicitfit (all three), implicitfit::model, ::fit, ::datasets.
+# Targets: implicitfit::implicitfit (all four), implicitfit::model, ::fit, ::datasets, ::jobs.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -27,14 +27,16 @@ endif()
 add_library(implicitfit_library INTERFACE)
 add_library(implicitfit::implicitfit ALIAS implicitfit_library)
 target_link_libraries(implicitfit_library INTERFACE implicitfit_model implicitfit_fit
-  implicitfit_datasets)
+  implicitfit_datasets implicitfit_jobs)
 set_target_properties(implicitfit_library PROPERTIES EXPORT_NAME implicitfit)
 set_target_properties(implicitfit_model PROPERTIES EXPORT_NAME model)
 set_target_properties(implicitfit_fit PROPERTIES EXPORT_NAME fit)
 set_target_properties(implicitfit_datasets PROPERTIES EXPORT_NAME datasets)
+set_target_properties(implicitfit_jobs PROPERTIES EXPORT_NAME jobs)
 # implicitfit_warnings is linked privately (compile flags of this project only); a static
 # library's private links still appear in its export as $<LINK_ONLY:...>, so it is exported.
 install(TARGETS implicitfit_library implicitfit_model implicitfit_fit implicitfit_datasets
+                implicitfit_jobs
                 implicitfit_warnings
   EXPORT implicitfitTargets
   ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
@@ -45,7 +47,7 @@ install(TARGETS implicitfit RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/implicitfit"
   DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}" FILES_MATCHING PATTERN "*.h")
 # Every header of the library folders (no PCL include is in any of them: docs/design.md).
-foreach(folder model fit datasets)
+foreach(folder model fit datasets jobs)
   install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/"
     DESTINATION "${IMPLICITFIT_INTERNAL_INCLUDEDIR}/${folder}"
     FILES_MATCHING PATTERN "*.h" PATTERN "data" EXCLUDE)

@@ -88,4 +88,11 @@ py::array_t<double> ArrayFromValues(std::vector<double>&& values) {
                              {py::ssize_t(sizeof(double))}, owned->data(), owner);
 }
 
+py::array_t<std::int64_t> ArrayFromIndices(const std::vector<int>& values) {
+  py::array_t<std::int64_t> out(static_cast<py::ssize_t>(values.size()));
+  std::int64_t* data = out.mutable_data();
+  for (size_t i = 0; i < values.size(); ++i) data[i] = values[i];
+  return out;
+}
+
 }  // namespace implicitfit::python

@@ -13,6 +13,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 namespace implicitfit::python {
@@ -49,5 +50,7 @@ Points NormalsFromArray(const py::handle& object, size_t count);
 py::array_t<double> ArrayFromPoints(Points&& points);
 // Moves the vector into an (N,) float64 array (no copy).
 py::array_t<double> ArrayFromValues(std::vector<double>&& values);
+// Indices or labels as an (N,) int64 array (copied: the library's are int).
+py::array_t<std::int64_t> ArrayFromIndices(const std::vector<int>& values);
 
 }  // namespace implicitfit::python

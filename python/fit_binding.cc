@@ -8,11 +8,13 @@
 // normals the neighbourhood fits do not trust (datasets/normals/normal_trust.h: a few probed points) are
 // dropped and the fit hypothesises from points alone, as on the command line.
 // estimator= (fit/primitive/estimator.h) as `fit --estimator`.
+// `fit` returns a FitResult (model, success, inliers, report) that also unpacks as the former
+// (model, report) tuple; fit_tree and fit_patch return (model, report).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
-#include <limits>
+#include <numeric>
 #include <optional>
 #include <string>
 
@@ -27,43 +29,45 @@
 #include "fit/tree/tree_fitter.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
+#include "python/input_cloud.h"
 #include "python/json_to_python.h"
+#include "python/options.h"
 
 namespace implicitfit::python {
 namespace {
 
-// The cloud of a fit: points, and normals given or estimated (`action` says which).
-struct FitInput {
-  PointCloud cloud;
-  std::string action;
-  bool estimate = false;
+// What `fit` returns: the model (None when the fit failed), its inliers (indices into the
+// points, ascending) and the report. Iterating gives (model, report), so `model, report =
+// fit(...)` and `fit(...)[0]` work as when `fit` returned that tuple.
+struct FitResult {
+  py::object model = py::none();
+  bool success = false;
+  py::object inliers;
+  py::object report;
+
+  py::tuple AsTuple() const { return py::make_tuple(model, report); }
+  std::string Repr() const {
+    const py::dict r = report.cast<py::dict>();
+    std::string text = "FitResult(success=" + std::string(success ? "True" : "False");
+    if (!model.is_none()) text += ", kind=" + py::repr(model.attr("kind")).cast<std::string>();
+    text += ", inliers=" + std::to_string(py::len(inliers)) + " of " +
+            (r.contains("points") ? py::str(r["points"]).cast<std::string>() : "?");
+    if (r.contains("rms_distance") && success)
+      text += ", rms_distance=" + py::repr(r["rms_distance"]).cast<std::string>();
+    if (!success && r.contains("message"))
+      text += ", message=" + py::repr(r["message"]).cast<std::string>();
+    return text + ")";
+  }
 };
 
-FitInput ReadFitInput(const py::handle& points, const py::handle& normals, size_t min_points) {
-  FitInput in;
-  in.cloud.points = PointsFromArray(points, "points", min_points);
-  if (normals.is_none()) {
-    in.estimate = true;
-  } else {
-    in.cloud.normals = NormalsFromArray(normals, in.cloud.size());
-    in.action = "given";
-  }
-  return in;
-}
+struct PatchFitOutput {
+  PatchFitResult result;
+  size_t points = 0;
+  py::object model, report;
+};
 
-// Runs without the GIL.
-void EstimateNormalsIfMissing(FitInput* in) {
-  if (in->estimate) in->action = EnsureOrientedNormals(&in->cloud, NormalOptions{}).action;
-}
-
-unsigned SeedFrom(long long seed) {
-  if (seed < 0 || seed > std::numeric_limits<unsigned>::max())
-    throw py::value_error("seed: must be in [0, 2^32 - 1], got " + std::to_string(seed));
-  return static_cast<unsigned>(seed);
-}
-
-py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degree, bool convex,
-                   const py::handle& tetrahedron) {
+PatchFitOutput RunPatchFit(const py::handle& points, const py::handle& normals, int degree,
+                           bool convex, const py::handle& tetrahedron) {
   PatchFitOptions options;
   options.degree = degree;
   options.convex = convex;
@@ -82,22 +86,31 @@ py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degr
   }
   std::string error;
   if (!options.IsValid(&error)) throw py::value_error(error);
-  FitInput in =
-      ReadFitInput(points, normals, static_cast<size_t>(NumBernsteinControlPoints(options.degree)));
+  InputCloud in = ReadInputCloud(points, normals,
+                                 static_cast<size_t>(NumBernsteinControlPoints(options.degree)));
   PatchFitResult result;
   {
     py::gil_scoped_release release;
     EstimateNormalsIfMissing(&in);
     result = FitBernsteinPatch(in.cloud.points, in.cloud.normals, options);
   }
-  py::object model = result.success ? py::cast(result.ToModel()) : py::none();
-  return py::make_tuple(model,
-                        ToPython(PatchFitReport(result, options, in.cloud.size(), in.action)));
+  PatchFitOutput out;
+  out.points = in.cloud.size();
+  out.model = result.success ? py::cast(result.ToModel()) : py::none();
+  out.report = ToPython(PatchFitReport(result, options, in.cloud.size(), in.action));
+  out.result = std::move(result);
+  return out;
+}
+
+py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degree, bool convex,
+                   const py::handle& tetrahedron) {
+  const PatchFitOutput out = RunPatchFit(points, normals, degree, convex, tetrahedron);
+  return py::make_tuple(out.model, out.report);
 }
 
 // As EstimateNormalsIfMissing, then the command line's trust rule for primitive fits
 // (datasets/normals/normal_trust.h: ReadCloudForPrimitiveFit).
-void EstimateTrustedNormalsIfMissing(FitInput* in) {
+void EstimateTrustedNormalsIfMissing(InputCloud* in) {
   if (!in->estimate) return;
   EstimateNormalsIfMissing(in);
   const NormalTrust trust = AssessEstimatedNormals(in->cloud.points);
@@ -107,29 +120,34 @@ void EstimateTrustedNormalsIfMissing(FitInput* in) {
   }
 }
 
-py::tuple Fit(const py::handle& points, const py::handle& normals, const std::string& kind,
+FitResult Fit(const py::handle& points, const py::handle& normals, const std::string& kind,
               long long seed, std::optional<double> threshold, std::optional<py::dict> fix,
               const std::string& estimator, std::optional<double> band) {
   if ((kind == "quadric-patch" || kind == "cubic-patch") && estimator != "robust")
     throw py::value_error("estimator " + estimator +
                           ": applies to plane, sphere, cylinder, cone and torus fits");
-  if (kind == "quadric-patch" || kind == "cubic-patch")
-    return PatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
+  if (kind == "quadric-patch" || kind == "cubic-patch") {
+    // A patch is a least-squares fit of every point: all of them are its inliers.
+    const PatchFitOutput out =
+        RunPatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
+    FitResult fit;
+    fit.model = out.model;
+    fit.success = out.result.success;
+    std::vector<int> all(out.result.success ? out.points : 0);
+    std::iota(all.begin(), all.end(), 0);
+    fit.inliers = ArrayFromIndices(all);
+    fit.report = out.report;
+    return fit;
+  }
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))
     throw py::value_error("kind " + kind + ": unknown (" + FittableKindNames() +
                           ", quadric-patch, cubic-patch)");
   options.seed = SeedFrom(seed);
-  if (threshold) {
-    if (!(*threshold > 0.0) || !std::isfinite(*threshold))
-      throw py::value_error("threshold: must be a positive number");
-    options.threshold = *threshold;
-  }
+  if (threshold) options.threshold = PositiveFrom(*threshold, "threshold");
   if (band) {
-    if (!(*band > 0.0) || !std::isfinite(*band))
-      throw py::value_error("band: must be a positive number");
+    options.start_band = PositiveFrom(*band, "band");
     if (threshold) throw py::value_error("threshold and band exclude each other");
-    options.start_band = *band;
   }
   if (fix) {
     for (const auto& [field, value] : *fix) {
@@ -153,8 +171,8 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
   std::string error;
   if (!options.IsValid(&error)) throw py::value_error(error);
   // Without normals a fit needs the free parameter count plus one points (fit/metrology/point_hypotheses.h).
-  FitInput in =
-      ReadFitInput(points, normals,
+  InputCloud in =
+      ReadInputCloud(points, normals,
                    normals.is_none() ? static_cast<size_t>(FreeParameterCount(options.kind)) + 1
                                      : static_cast<size_t>(options.min_inliers));
   CheckedFit checked;
@@ -169,14 +187,18 @@ py::tuple Fit(const py::handle& points, const py::handle& normals, const std::st
                                   options);
   }
   const PrimitiveFitResult& result = checked.result;
-  py::object model = result.success ? py::cast(result.ToModel(options.kind)) : py::none();
   nlohmann::json report = PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action);
   report["check"] = checked.ToJson();
-  return py::make_tuple(model, ToPython(report));
+  FitResult fit;
+  fit.success = result.success;
+  if (result.success) fit.model = py::cast(result.ToModel(options.kind));
+  fit.inliers = ArrayFromIndices(result.success ? result.inliers : std::vector<int>());
+  fit.report = ToPython(report);
+  return fit;
 }
 
 py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Model& init) {
-  FitInput in = ReadFitInput(points, normals, init.parameters().size());
+  InputCloud in = ReadInputCloud(points, normals, init.parameters().size());
   TreeFitResult result;
   {
     py::gil_scoped_release release;
@@ -190,6 +212,22 @@ py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Mod
 }  // namespace
 
 void BindFits(py::module_& m) {
+  py::class_<FitResult>(m, "FitResult",
+                        "The result of fit(): model (Model or None), success, inliers (int64\n"
+                        "indices of the points the final fit used, ascending), report (dict).\n"
+                        "Unpacks as (model, report): `model, report = fit(...)`.")
+      .def_readonly("model", &FitResult::model, "The fitted Model, None when the fit failed")
+      .def_readonly("success", &FitResult::success)
+      .def_readonly("inliers", &FitResult::inliers,
+                    "(K,) int64: the points within the final inlier band (|f| and normals)")
+      .def_readonly("report", &FitResult::report, "The `implicitfit fit --report` JSON as a dict")
+      .def("__iter__", [](const FitResult& r) { return py::iter(r.AsTuple()); })
+      .def("__len__", [](const FitResult&) { return 2; })
+      .def("__getitem__", [](const FitResult& r, py::ssize_t i) -> py::object {
+        if (i < -2 || i > 1) throw py::index_error("FitResult unpacks as (model, report)");
+        return (i == 0 || i == -2) ? r.model : r.report;
+      })
+      .def("__repr__", &FitResult::Repr);
   m.def(
       "fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
       py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
@@ -204,7 +242,8 @@ void BindFits(py::module_& m) {
       "fix: {field: value}, e.g. {\"radius\": 2, \"axis\": [0, 0, 1]}.\n"
       "estimator: \"robust\" (default), \"least-squares\" (every point, ISO 10360-6) or\n"
       "\"minimum-zone\" (Chebyshev, ISO 1101), as `implicitfit fit --estimator`.\n"
-      "Returns (Model, report); Model is None when the fit fails (report[\"message\"] says why).");
+      "Returns a FitResult (model, success, inliers, report; unpacks as (model, report)); model\n"
+      "is None when the fit fails (report[\"message\"] says why).");
   m.def("fit_tree", &TreeFit, py::arg("points"), py::arg("normals"), py::arg("init"),
         "Fits every free parameter of a model tree (primitive parameters, delta and epsilon of\n"
         "blends, control points), as `implicitfit fit CLOUD --init MODEL.json`. Returns (Model, "

@@ -2,7 +2,7 @@
 # tests/python/test_stubs.py checks that every public name and every signature here matches the
 # built module.
 from os import PathLike
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -10,6 +10,7 @@ import numpy.typing as npt
 __version__: str
 
 _Array = npt.NDArray[np.float64]
+_Indices = npt.NDArray[np.int64]
 _Points = npt.ArrayLike  # an (N, 3) array (float64 is used without conversion)
 _Report = Dict[str, Any]  # the JSON report of the command line, as Python objects
 _Path = Union[str, "PathLike[str]"]
@@ -34,6 +35,45 @@ class Model:
     def kind(self) -> str:
         """The root node's type: "sphere", "union", "bernstein_patch", ..."""
 
+class FitResult:
+    """The result of fit(); unpacks as (model, report)."""
+
+    model: Optional[Model]  # None when the fit failed
+    success: bool
+    inliers: _Indices  # (K,) the points within the final inlier band, ascending
+    report: _Report  # the `implicitfit fit --report` JSON
+    def __iter__(self) -> Iterator[Any]: ...
+    def __len__(self) -> int: ...
+    def __getitem__(self, index: int) -> Any: ...
+
+class DetectedPrimitive:
+    """One primitive found by detect()."""
+
+    name: str  # "p0", "p1", ... as in the scene file
+    kind: str  # plane, sphere, cylinder, cone, torus
+    model: Dict[str, Any]  # the scene file's model node: {"type": "sphere", "center": ..., ...}
+    indices: _Indices  # (K,) its points, ascending
+    rms_distance: float
+    normal_side: str  # "outward", "inward" or "unknown"
+
+class DetectResult:
+    """The result of detect()."""
+
+    primitives: List[DetectedPrimitive]  # largest first
+    labels: _Indices  # (N,) index into primitives, -1 unassigned
+    report: _Report  # `implicitfit detect --report` without its header
+
+class ReconstructResult:
+    """The result of reconstruct()."""
+
+    model: Optional[Dict[str, Any]]  # the model file; None unless verified (or keep_unverified)
+    success: bool
+    verified: bool
+    expression: str
+    message: str
+    labels: _Indices  # (N,) detect's primitive per point, -1 unassigned
+    report: _Report  # `implicitfit reconstruct --report` without its header
+
 def fit(
     points: _Points,
     normals: Optional[_Points] = None,
@@ -43,9 +83,34 @@ def fit(
     fix: Optional[Mapping[str, Union[float, Sequence[float]]]] = None,
     estimator: str = "robust",
     band: Optional[float] = None,
-) -> Tuple[Optional[Model], _Report]:
-    """One primitive, as `implicitfit fit CLOUD --model KIND`; Model is None when it fails.
+) -> FitResult:
+    """One primitive, as `implicitfit fit CLOUD --model KIND`; model is None when it fails.
     threshold: a fixed inlier distance; band: the adaptive band's start."""
+
+def detect(
+    points: _Points,
+    normals: Optional[_Points] = None,
+    *,
+    seed: int = 1,
+    threshold: Optional[float] = None,
+    min_points: Optional[int] = None,
+    kinds: Optional[Sequence[str]] = None,
+) -> DetectResult:
+    """Every primitive of a cloud, as `implicitfit detect CLOUD`."""
+
+def reconstruct(
+    points: _Points,
+    normals: Optional[_Points] = None,
+    *,
+    seed: int = 1,
+    keep_unverified: bool = False,
+) -> ReconstructResult:
+    """The verified solid of a cloud, as `implicitfit reconstruct CLOUD` (detect, then the solid)."""
+
+def mesh(
+    model: Union[Model, Mapping[str, Any]], cell: Optional[float] = None
+) -> Tuple[_Array, _Indices]:
+    """(V, F) of the zero set, as `implicitfit mesh MODEL.json`: (n, 3) float64, (m, 3) int64."""
 
 def fit_tree(
     points: _Points, normals: Optional[_Points], init: Model

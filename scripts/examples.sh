@@ -13,7 +13,7 @@ work="$(mktemp -d /tmp/implicitfit_install.XXXXXX)"
 trap 'rm -rf "$work"' EXIT
 source scripts/build_dir.sh
 [ -f "$build_dir/CMakeCache.txt" ] || cmake -S . -B "$build_dir" "${build_options[@]}" >/dev/null
-targets=(implicitfit implicitfit_model implicitfit_fit implicitfit_datasets)
+targets=(implicitfit implicitfit_model implicitfit_fit implicitfit_datasets implicitfit_jobs)
 grep -q '^IMPLICITFIT_BUILD_PYTHON:BOOL=ON' "$build_dir/CMakeCache.txt" && targets+=(implicitfit_python)
 cmake --build "$build_dir" -j "$(nproc)" --target "${targets[@]}"
 # Every component (the Python module included), as `cmake --install --prefix P` does.

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/batch/batch_job.h"
-#include "apps/detect_job.h"
+#include "jobs/detect_job.h"
 #include "datasets/io/scene_file.h"
 
 namespace implicitfit {

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/batch/batch_job.h"
-#include "apps/reconstruct_job.h"
+#include "jobs/reconstruct_job.h"
 #include "datasets/io/model_file.h"
 
 namespace implicitfit {

@@ -63,6 +63,36 @@ def run(*args):
     return r.returncode, r.stdout, r.stderr
 
 
+def spins_during(call):
+    """How often this thread gets to run while another thread runs call(). With a 1 s switch
+    interval the interpreter does not take the GIL from the other thread in the microseconds
+    between setting the flag and entering the library (nor inside it, as C++ code): this thread
+    runs during the call only if the call releases the GIL. Holding the GIL for the whole call
+    leaves 0 (the flag is False again before this thread gets the GIL back); a released GIL lets
+    it spin for the whole call."""
+    import sys
+    import threading
+    state = {"in_call": False, "seen": 0}
+
+    def work():
+        state["in_call"] = True
+        call()
+        state["in_call"] = False
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1.0)
+    try:
+        thread = threading.Thread(target=work)
+        thread.start()
+        while thread.is_alive():
+            if state["in_call"]:
+                state["seen"] += 1
+        thread.join()
+    finally:
+        sys.setswitchinterval(interval)
+    return state["seen"]
+
+
 def write_model(path, root):
     import json
     path.write_text(json.dumps({"format": "implicitfit-model", "version": 1, "root": root}))

@@ -1,6 +1,8 @@
 """The module and the command line on the same files: bit-identical models for the same seed,
-the same reports (but the timing and where the normals came from), the same certificates and
-values. Both run the same library code (fit/common/fit_report.h, model/certificates/convexity_report.h)."""
+the same reports (but the timing, where the normals came from and the command line's header),
+the same certificates and values, the same detected primitives and reconstructed solids. Both
+run the same library code (fit/common/fit_report.h, model/certificates/convexity_report.h,
+jobs/)."""
 import json
 
 import numpy as np
@@ -140,3 +142,54 @@ def test_check_matches_check_json(cli, tmp_path):
     for entry, path in zip(json.loads(out)["files"], files):
         assert entry.pop("file") == str(path)
         assert implicitfit.check(implicitfit.Model.load(str(path))) == entry
+
+
+def test_detect_finds_what_the_command_line_finds(cli, tmp_path):
+    """implicitfit.detect on read_cloud's arrays and `implicitfit detect` on the file (both seed
+    1): the same primitives (the scene file's model nodes), the same labels, the same report but
+    the header, the timing and the cloud's name."""
+    sphere = implicitfit.Model.from_json(json.dumps({"format": "implicitfit-model", "version": 1,
+        "root": {"type": "sphere", "center": [3, 0, 1.5], "radius": 1}}))
+    plane = implicitfit.Model.from_json(json.dumps({"format": "implicitfit-model", "version": 1,
+        "root": {"type": "plane", "normal": [0, 0, 1], "offset": 0}}))
+    p1, n1 = implicitfit.sample(plane, 2500, noise=0.002, seed=1)
+    p2, n2 = implicitfit.sample(sphere, 2500, noise=0.002, seed=2)
+    cloud = tmp_path / "cloud.xyz"
+    np.savetxt(cloud, np.hstack([np.vstack([p1, p2]), np.vstack([n1, n2])]), fmt="%.17g")
+    scene, labels, report = tmp_path / "scene.json", tmp_path / "labels.txt", tmp_path / "r.json"
+    code, _, err = run(cli, "detect", cloud, "--out", scene, "--labels", labels, "--report", report,
+                       "--seed", "1", "--quiet")
+    assert code == 0, err
+    points, normals = implicitfit.read_cloud(str(cloud))
+    result = implicitfit.detect(points, normals, seed=1)
+    cli_scene = json.loads(scene.read_text())
+    assert len(result.primitives) == len(cli_scene["primitives"]) >= 2
+    for p, c in zip(result.primitives, cli_scene["primitives"]):
+        assert (p.name, p.model, len(p.indices), p.rms_distance, p.normal_side) == \
+               (c["name"], c["model"], c["points"], c["rms_distance"], c["normal_side"])
+    assert np.array_equal(result.labels, np.loadtxt(labels, dtype=np.int64))
+    volatile = VOLATILE | {"cloud"}
+    assert {k: v for k, v in result.report.items() if k not in volatile} == \
+           {k: v for k, v in json.loads(report.read_text()).items() if k not in volatile}
+
+
+def test_reconstruct_builds_what_the_command_line_builds(cli, tmp_path):
+    """implicitfit.reconstruct on read_cloud's arrays and `implicitfit reconstruct` on the file
+    (both seed 1): the same model file, the same verdict."""
+    sphere = implicitfit.Model.from_json(json.dumps({"format": "implicitfit-model", "version": 1,
+        "root": {"type": "sphere", "center": [3, 0, 1.5], "radius": 1}}))
+    p, n = implicitfit.sample(sphere, 3000, noise=0.002, seed=3)
+    cloud = tmp_path / "cloud.xyz"
+    np.savetxt(cloud, np.hstack([p, n]), fmt="%.17g")
+    out, report = tmp_path / "solid.json", tmp_path / "r.json"
+    code, _, err = run(cli, "reconstruct", cloud, "--out", out, "--report", report, "--seed", "1",
+                       "--quiet")
+    assert code == 0, err
+    points, normals = implicitfit.read_cloud(str(cloud))
+    result = implicitfit.reconstruct(points, normals, seed=1)
+    assert result.success and result.model == json.loads(out.read_text())
+    cli_report = json.loads(report.read_text())
+    for key in ("success", "expression", "bounded", "rms_distance", "inliers", "model_written",
+                "primitives", "blends", "closures", "separators"):
+        assert result.report[key] == cli_report[key], key
+    assert result.report["verification"]["verified"] == cli_report["verification"]["verified"]

@@ -1,11 +1,9 @@
 """A fit of 10^5 points: accuracy against the known truth of a sampled cylinder, and the GIL
 released while the fit runs (another Python thread keeps running)."""
-import sys
-import threading
-
 import numpy as np
 
 import implicitfit
+from conftest import spins_during
 
 TRUTH_POINT = np.array([10.0, -4.0, 2.5])
 TRUTH_AXIS = np.array([0.3, 0.4, 0.866])
@@ -44,27 +42,4 @@ def test_cylinder_from_100000_points():
 
 def test_the_gil_is_released_during_the_fit():
     _, (points, normals) = cloud()
-    state = {"in_fit": False, "seen": 0}
-
-    def work():
-        state["in_fit"] = True
-        implicitfit.fit(points, normals, kind="cylinder", seed=1)
-        state["in_fit"] = False
-
-    # With a 1 s switch interval the interpreter does not take the GIL from the fit thread in the
-    # microseconds between setting the flag and entering the library (nor inside it, as C++ code):
-    # this thread can run during the fit only if the fit releases the GIL.
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1.0)
-    try:
-        thread = threading.Thread(target=work)
-        thread.start()
-        while thread.is_alive():
-            if state["in_fit"]:
-                state["seen"] += 1
-        thread.join()
-    finally:
-        sys.setswitchinterval(interval)
-    # Holding the GIL for the whole fit would leave 0 here (the flag is False again before this
-    # thread gets the GIL back); a released GIL lets it spin for the whole fit.
-    assert state["seen"] > 1000
+    assert spins_during(lambda: implicitfit.fit(points, normals, kind="cylinder", seed=1)) > 1000

@@ -47,11 +47,18 @@ def pybind_parameters(obj, name):
 
 
 def stub_parameters(func):
+    """[(name, default or None)]; keyword-only parameters after ("*", None), as pybind11 writes
+    them."""
     args = func.args
     names = [a.arg for a in args.posonlyargs + args.args]
     defaults = [None] * (len(names) - len(args.defaults)) + [ast.literal_eval(d)
                                                              for d in args.defaults]
-    return list(zip(names, defaults))
+    out = list(zip(names, defaults))
+    if args.kwonlyargs:
+        out.append(("*", None))
+        out += [(a.arg, None if d is None else ast.literal_eval(d))
+                for a, d in zip(args.kwonlyargs, args.kw_defaults)]
+    return out
 
 
 def same(stub, bound, where):
@@ -97,6 +104,18 @@ def test_every_model_member_has_the_module_signature():
         if not is_static:
             assert stub[0][0] == "self", name
         same(stub, pybind_parameters(attr, name), "Model." + name)
+
+
+def test_every_result_class_has_the_module_attributes():
+    classes = [n for n in stub_tree().body if isinstance(n, ast.ClassDef) and n.name != "Model"]
+    assert {c.name for c in classes} == {"FitResult", "DetectResult", "DetectedPrimitive",
+                                         "ReconstructResult"}
+    for cls in classes:
+        stubbed = {n.target.id for n in cls.body if isinstance(n, ast.AnnAssign)}
+        bound = {n for n in dir(getattr(implicitfit, cls.name)) if not n.startswith("_")}
+        assert stubbed == bound, cls.name
+        for name in stubbed:
+            assert isinstance(getattr(getattr(implicitfit, cls.name), name), property), name
 
 
 def test_the_version_is_the_packages():

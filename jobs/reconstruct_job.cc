@@ -1,6 +1,6 @@
-#include "apps/reconstruct_job.h"
+#include "jobs/reconstruct_job.h"
 
-#include "apps/detect_job.h"
+#include "jobs/detect_job.h"
 #include "datasets/io/io_error.h"
 #include "datasets/normals/oriented_cloud.h"
 #include "datasets/io/scene_file.h"

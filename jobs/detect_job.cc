@@ -1,4 +1,4 @@
-#include "apps/detect_job.h"
+#include "jobs/detect_job.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,7 +1,8 @@
-// The solid reconstruction of one cloud file, shared by `reconstruct` and `batch --model solid`:
+// The solid reconstruction of one cloud file, shared by `reconstruct` and `batch --model solid`
+// (and the Python module; public as include/implicitfit/reconstruct.h):
 // read the cloud with oriented normals (datasets/normals/oriented_cloud.h), take the primitives of a
 // scene file or, without one, of `detect` run on the cloud with its defaults and the given seed
-// (apps/detect_job.h), and reconstruct the solid (fit/reconstruct/solid_reconstruction.h). The report:
+// (jobs/detect_job.h), and reconstruct the solid (fit/reconstruct/solid_reconstruction.h). The report:
 //   {"success", "message", "points", "normals", "expression", "bounded", "rms_distance", "sigma",
 //    "inliers", "normal_sign_agreement", "unassigned", "seconds", "primitives": [{"name",
 //    "side", "points"}], "blends": [{"node", "type", "delta", "epsilon", "standard_deviations",

@@ -1,8 +1,8 @@
 // The detection of one cloud file, shared by the `detect` command (and `batch --model scene`,
-// `reconstruct`): read the cloud with oriented normals (datasets/normals/oriented_cloud.h:
-// estimated and oriented when the file has none) and the neighbourhoods the normals were
-// checked or estimated with (datasets/normals/neighbourhoods.h: one k-nearest-neighbour search
-// for both), detect every primitive (fit/detect/primitive_detector.h), and build the scene
+// `reconstruct`, the Python module; public as include/implicitfit/detect.h): read the cloud with
+// oriented normals (datasets/normals/oriented_cloud.h: estimated and oriented when the file has
+// none) and the neighbourhoods the normals were checked or estimated with
+// (datasets/normals/neighbourhoods.h: one k-nearest-neighbour search for both), detect every primitive (fit/detect/primitive_detector.h), and build the scene
 // (datasets/io/scene_file.h) and the JSON report:
 //   {"cloud", "points", "normals", "primitives", "unassigned", "spacing", "noise", "threshold",
 //    "normal_angle_deg", "min_points", "seeds", "candidates_accepted", "merges", "seconds",
