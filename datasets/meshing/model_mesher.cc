@@ -9,6 +9,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -98,8 +99,16 @@ void DefaultMeshBox(const Model& model, Vec* box_min, Vec* box_max) {
   *box_max += margin;
 }
 
-MeshResult MeshModel(const Model& model, const MeshOptions& options) {
-  MeshResult result;
+namespace {
+
+int ThreadsOrDefault(int num_threads) {
+  return std::max(1, num_threads > 0 ? num_threads
+                                     : static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// 1. The box (given, or the model's own plus two cells on every side, so that a closed surface
+// stays off the faces), the cell (given, or 1/100 of the longest side), f at every grid node.
+Grid SampleGrid(const Model& model, const MeshOptions& options, MeshResult* result) {
   Vec lo, hi;
   if (options.has_box) {
     lo = options.box_min;
@@ -112,7 +121,7 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
   const double longest = (hi - lo).maxCoeff();
   const double h = options.cell > 0 ? options.cell : longest / 100.0;
   if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("mesh cell must be > 0");
-  if (!options.has_box) {  // two more cells on every side: a closed surface stays off the faces
+  if (!options.has_box) {
     lo -= Vec::Constant(2 * h);
     hi += Vec::Constant(2 * h);
   }
@@ -129,21 +138,25 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
                                   " grid points (use a larger cell)");
     grid.n[a] = static_cast<int>(cells) + 1;
   }
-  result.box_min = lo;
-  result.box_max = lo + h * Vec(grid.n[0] - 1, grid.n[1] - 1, grid.n[2] - 1);
-  result.cell = h;
+  result->box_min = lo;
+  result->box_max = lo + h * Vec(grid.n[0] - 1, grid.n[1] - 1, grid.n[2] - 1);
+  result->cell = h;
   FillGrid(model, options.num_threads, &grid);
+  return grid;
+}
 
-  // Contour in index space (origin 0, spacing 1): VTK's points are float, so small numbers
-  // keep them precise enough to tell which grid edge each vertex lies on.
+// 2. VTK's flying edges on the grid, in index space (origin 0, spacing 1): VTK's points are
+// float, so small numbers keep them precise enough to tell which grid edge each vertex lies on.
+vtkSmartPointer<vtkPolyData> ContourInIndexSpace(Grid* grid) {
   vtkNew<vtkImageData> image;
-  image->SetDimensions(grid.n[0], grid.n[1], grid.n[2]);
+  image->SetDimensions(grid->n[0], grid->n[1], grid->n[2]);
   image->SetOrigin(0, 0, 0);
   image->SetSpacing(1, 1, 1);
   vtkNew<vtkDoubleArray> scalars;
   scalars->SetName("f");
   scalars->SetNumberOfComponents(1);
-  scalars->SetArray(grid.values.data(), static_cast<vtkIdType>(grid.values.size()), 1);  // no copy
+  scalars->SetArray(grid->values.data(), static_cast<vtkIdType>(grid->values.size()),
+                    1);  // no copy
   image->GetPointData()->SetScalars(scalars);
   vtkNew<vtkFlyingEdges3D> contour;
   contour->SetInputData(image);
@@ -154,17 +167,19 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
   contour->ComputeScalarsOff();
   contour->InterpolateAttributesOff();
   contour->Update();
-  vtkPolyData* poly = contour->GetOutput();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->ShallowCopy(contour->GetOutput());
+  return poly;
+}
 
-  TriangleMesh& mesh = result.mesh;
+// 3. Each vertex: its grid edge (the edge from the nearest node whose linear interpolation lands
+// on the vertex), then the root of f on that edge. abs_value: |f| at each vertex.
+void PlaceVerticesOnRoots(const Model& model, const Grid& grid, vtkPolyData* poly, int num_threads,
+                          TriangleMesh* mesh, std::vector<double>* abs_value) {
   const vtkIdType num_points = poly->GetNumberOfPoints();
-  mesh.vertices.resize(num_points);
-  // 3. Each vertex: find its grid edge (the edge from the nearest node whose linear
-  // interpolation lands on the vertex), then the root of f on that edge.
-  const int threads =
-      std::max(1, options.num_threads > 0 ? options.num_threads
-                                          : static_cast<int>(std::thread::hardware_concurrency()));
-  std::vector<double> abs_value(num_points, 0.0);
+  mesh->vertices.resize(num_points);
+  abs_value->assign(num_points, 0.0);
+  const int threads = ThreadsOrDefault(num_threads);
   auto refine = [&](int t) {
     double u[3];
     for (vtkIdType v = t; v < num_points; v += threads) {
@@ -197,28 +212,30 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
       if (best < 1e-4) {
         const Vec b = grid.Point(best_other[0], best_other[1], best_other[2]);
         const double f_b = grid.values[grid.Index(best_other[0], best_other[1], best_other[2])];
-        mesh.vertices[v] = RootOnEdge(model, a, b, f_node, f_b);
+        mesh->vertices[v] = RootOnEdge(model, a, b, f_node, f_b);
       } else {  // not expected; keep VTK's interpolated position
-        mesh.vertices[v] = grid.origin + h * Vec(u[0], u[1], u[2]);
+        mesh->vertices[v] = grid.origin + grid.h * Vec(u[0], u[1], u[2]);
       }
-      const double f = model.Value(mesh.vertices[v]);
-      abs_value[v] = std::isfinite(f) ? std::abs(f) : std::numeric_limits<double>::infinity();
+      const double f = model.Value(mesh->vertices[v]);
+      (*abs_value)[v] = std::isfinite(f) ? std::abs(f) : std::numeric_limits<double>::infinity();
     }
   };
   RunWorkers(threads, refine);
-  result.max_abs_value = num_points ? *std::max_element(abs_value.begin(), abs_value.end()) : 0.0;
+}
 
+// The triangles of the contour, and the grid cell of each (step 5): its vertices lie on edges
+// of one cell, so its centroid (index space) is inside it.
+void CollectTriangles(vtkPolyData* poly, const Grid& grid, TriangleMesh* mesh,
+                      std::vector<Eigen::Vector3i>* cells) {
   vtkCellArray* polys = poly->GetPolys();
-  mesh.triangles.reserve(polys->GetNumberOfCells());
-  std::vector<Eigen::Vector3i> triangle_cells;  // the grid cell of each triangle (step 5)
-  triangle_cells.reserve(polys->GetNumberOfCells());
+  mesh->triangles.reserve(polys->GetNumberOfCells());
+  cells->reserve(polys->GetNumberOfCells());
   vtkNew<vtkIdList> ids;
   for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
     polys->GetCellAtId(c, ids);
     if (ids->GetNumberOfIds() != 3) continue;  // flying edges emits triangles only
-    mesh.triangles.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
-                                static_cast<int>(ids->GetId(2)));
-    // The triangle's vertices lie on edges of one cell: its centroid (index space) is inside.
+    mesh->triangles.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
+                                 static_cast<int>(ids->GetId(2)));
     Vec centroid = Vec::Zero();
     for (int k = 0; k < 3; ++k) {
       double u[3];
@@ -228,77 +245,99 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
     Eigen::Vector3i cell;
     for (int a = 0; a < 3; ++a)
       cell[a] = std::clamp(static_cast<int>(std::floor(centroid[a])), 0, grid.n[a] - 2);
-    triangle_cells.push_back(cell);
+    cells->push_back(cell);
   }
-  // 3b. Jumps: a grid edge whose ends differ in sign but across which f jumps instead of
-  // passing through 0 (the signed distance to an open patch, beyond its boundary) leaves its
-  // vertex at |f| far above the rounding level: triangles touching such a vertex are dropped.
-  if (options.drop_jumps) {
-    std::vector<int> remap(num_points, -1);
-    std::vector<Eigen::Vector3i> kept, kept_cells;
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const Eigen::Vector3i& tri = mesh.triangles[t];
-      if (abs_value[tri[0]] > kJumpFraction * h || abs_value[tri[1]] > kJumpFraction * h ||
-          abs_value[tri[2]] > kJumpFraction * h) {
-        ++result.jump_triangles;
-        continue;
+}
+
+// 3b. Jumps: a grid edge whose ends differ in sign but across which f jumps instead of passing
+// through 0 (the signed distance to an open patch, beyond its boundary) leaves its vertex at |f|
+// far above the rounding level: triangles touching such a vertex are dropped, and the vertices
+// no triangle keeps.
+void DropJumpTriangles(double h, const std::vector<double>& abs_value, TriangleMesh* mesh,
+                       std::vector<Eigen::Vector3i>* cells, MeshResult* result) {
+  std::vector<Eigen::Vector3i> kept, kept_cells;
+  for (size_t t = 0; t < mesh->triangles.size(); ++t) {
+    const Eigen::Vector3i& tri = mesh->triangles[t];
+    if (abs_value[tri[0]] > kJumpFraction * h || abs_value[tri[1]] > kJumpFraction * h ||
+        abs_value[tri[2]] > kJumpFraction * h) {
+      ++result->jump_triangles;
+      continue;
+    }
+    kept.push_back(tri);
+    kept_cells.push_back((*cells)[t]);
+  }
+  if (result->jump_triangles == 0) return;
+  std::vector<int> remap(mesh->vertices.size(), -1);
+  std::vector<Vec> vertices;
+  std::vector<double> values;
+  for (Eigen::Vector3i& tri : kept)
+    for (int k = 0; k < 3; ++k) {
+      if (remap[tri[k]] < 0) {
+        remap[tri[k]] = static_cast<int>(vertices.size());
+        vertices.push_back(mesh->vertices[tri[k]]);
+        values.push_back(abs_value[tri[k]]);
       }
-      kept.push_back(tri);
-      kept_cells.push_back(triangle_cells[t]);
+      tri[k] = remap[tri[k]];
     }
-    if (result.jump_triangles > 0) {
-      std::vector<Vec> vertices;
-      std::vector<double> values;
-      for (Eigen::Vector3i& tri : kept)
-        for (int k = 0; k < 3; ++k) {
-          if (remap[tri[k]] < 0) {
-            remap[tri[k]] = static_cast<int>(vertices.size());
-            vertices.push_back(mesh.vertices[tri[k]]);
-            values.push_back(abs_value[tri[k]]);
-          }
-          tri[k] = remap[tri[k]];
-        }
-      mesh.vertices.swap(vertices);
-      mesh.triangles.swap(kept);
-      triangle_cells.swap(kept_cells);
-      result.max_abs_value = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
-    }
-  }
-  const vtkIdType num_vertices = static_cast<vtkIdType>(mesh.vertices.size());
-  // 4. Normals from grad f; orient the triangles with it (one global decision by majority,
-  // so the case table's consistent orientation is kept).
-  mesh.normals.assign(num_vertices, Vec::Zero());
+  mesh->vertices.swap(vertices);
+  mesh->triangles.swap(kept);
+  cells->swap(kept_cells);
+  result->max_abs_value = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+}
+
+// 4. Normals from grad f; the triangles oriented with them (one global decision by majority, so
+// the case table's consistent orientation is kept); where grad f vanishes, the faces' normal.
+void OrientWithTheGradient(const Model& model, TriangleMesh* mesh) {
+  const size_t num_vertices = mesh->vertices.size();
+  mesh->normals.assign(num_vertices, Vec::Zero());
   std::vector<Vec> face_sum(num_vertices, Vec::Zero());
-  for (vtkIdType v = 0; v < num_vertices; ++v) {
-    const Vec g = model.Gradient(mesh.vertices[v]);
+  for (size_t v = 0; v < num_vertices; ++v) {
+    const Vec g = model.Gradient(mesh->vertices[v]);
     const double n = g.norm();
-    if (std::isfinite(n) && n > 0) mesh.normals[v] = g / n;
+    if (std::isfinite(n) && n > 0) mesh->normals[v] = g / n;
   }
   long agree = 0, disagree = 0;
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    const Vec& p0 = mesh.vertices[t[0]];
-    const Vec cross = (mesh.vertices[t[1]] - p0).cross(mesh.vertices[t[2]] - p0);
-    const double s = cross.dot(mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]]);
+  for (const Eigen::Vector3i& t : mesh->triangles) {
+    const Vec& p0 = mesh->vertices[t[0]];
+    const Vec cross = (mesh->vertices[t[1]] - p0).cross(mesh->vertices[t[2]] - p0);
+    const double s = cross.dot(mesh->normals[t[0]] + mesh->normals[t[1]] + mesh->normals[t[2]]);
     if (s > 0) ++agree;
     if (s < 0) ++disagree;
   }
   const bool flip = disagree > agree;
-  for (Eigen::Vector3i& t : mesh.triangles) {
+  for (Eigen::Vector3i& t : mesh->triangles) {
     if (flip) std::swap(t[1], t[2]);
-    const Vec& p0 = mesh.vertices[t[0]];
-    const Vec cross = (mesh.vertices[t[1]] - p0).cross(mesh.vertices[t[2]] - p0);
+    const Vec& p0 = mesh->vertices[t[0]];
+    const Vec cross = (mesh->vertices[t[1]] - p0).cross(mesh->vertices[t[2]] - p0);
     for (int k = 0; k < 3; ++k) face_sum[t[k]] += cross;
   }
-  for (vtkIdType v = 0; v < num_vertices; ++v)
-    if (mesh.normals[v].isZero()) {
+  for (size_t v = 0; v < num_vertices; ++v)
+    if (mesh->normals[v].isZero()) {
       const double n = face_sum[v].norm();
-      mesh.normals[v] = n > 0 ? Vec(face_sum[v] / n) : Vec(0, 0, 1);
+      mesh->normals[v] = n > 0 ? Vec(face_sum[v] / n) : Vec(0, 0, 1);
     }
+}
+
+}  // namespace
+
+MeshResult MeshModel(const Model& model, const MeshOptions& options) {
+  MeshResult result;
+  Grid grid = SampleGrid(model, options, &result);
+  const vtkSmartPointer<vtkPolyData> poly = ContourInIndexSpace(&grid);
+  std::vector<double> abs_value;
+  PlaceVerticesOnRoots(model, grid, poly, options.num_threads, &result.mesh, &abs_value);
+  result.max_abs_value =
+      abs_value.empty() ? 0.0 : *std::max_element(abs_value.begin(), abs_value.end());
+  std::vector<Eigen::Vector3i> triangle_cells;  // the grid cell of each triangle (step 5)
+  CollectTriangles(poly, grid, &result.mesh, &triangle_cells);
+  if (options.drop_jumps)
+    DropJumpTriangles(grid.h, abs_value, &result.mesh, &triangle_cells, &result);
+  OrientWithTheGradient(model, &result.mesh);
   if (options.sharp_features) {  // 5.
     SharpFeatureOptions sharp;
     sharp.feature_angle_deg = options.feature_angle_deg;
     const SharpFeatureStats stats =
-        InsertSharpFeatures(model, grid.origin, h, triangle_cells, &mesh, sharp);
+        InsertSharpFeatures(model, grid.origin, grid.h, triangle_cells, &result.mesh, sharp);
     result.feature_points = stats.feature_points;
     result.feature_flips = stats.flips;
     result.max_feature_distance = stats.max_distance;
