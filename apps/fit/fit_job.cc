@@ -30,9 +30,22 @@ std::pair<std::string, std::vector<double>> ParseFixOption(const std::string& te
 CloudFit FitCloudFile(const std::string& path, const PrimitiveFitOptions& options) {
   std::string normals;
   Neighbourhoods nb;
-  const PointCloud cloud = ReadCloudForPrimitiveFit(path, &normals, &nb);
+  std::vector<Eigen::Vector3d> untrusted;
+  const PointCloud cloud = ReadCloudForPrimitiveFit(path, &normals, &nb, &untrusted);
   CloudFit fit;
   fit.points = cloud.size();
+  // From points alone, but a volume by the detector's rule: no surface to fit (a fixed
+  // --threshold, which says which points are inliers, fits anyway).
+  std::string volume;
+  if (!untrusted.empty() && options.threshold <= 0 &&
+      FillsAVolume(cloud.points, untrusted, nb.indices, nb.spacing, &volume)) {
+    fit.result.success = false;
+    fit.result.termination = FitTermination::kFailure;
+    fit.result.message = std::string("no ") + NodeTypeName(options.kind) +
+                         " explains the cloud: " + volume + " (--threshold t fits anyway)";
+    fit.report = fit.result.ToJson(normals);
+    return fit;
+  }
   if (cloud.has_normals() && nb.indices.size() != cloud.size() && cloud.size() >= 2)
     nb = FindNeighbourhoods(cloud.points);
   const CheckedFit checked =

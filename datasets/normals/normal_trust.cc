@@ -62,12 +62,15 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points) {
 }
 
 PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action,
-                                    Neighbourhoods* neighbourhoods) {
+                                    Neighbourhoods* neighbourhoods,
+                                    std::vector<Eigen::Vector3d>* untrusted_normals) {
   std::string action;
   PointCloud cloud = ReadOrientedCloud(path, &action, true, nullptr, neighbourhoods);
+  if (untrusted_normals) untrusted_normals->clear();
   if (action.rfind("estimated", 0) == 0) {
     const NormalTrust trust = AssessEstimatedNormals(cloud.points);
     if (!trust.trusted) {
+      if (untrusted_normals) untrusted_normals->swap(cloud.normals);
       cloud.normals.clear();
       action = "estimated, not trusted (" + trust.reason + "): fit from points only";
     }

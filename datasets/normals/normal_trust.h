@@ -34,8 +34,10 @@ NormalTrust AssessEstimatedNormals(const std::vector<Eigen::Vector3d>& points);
 // that AssessEstimatedNormals does not trust are dropped, so the fit hypothesises from points
 // alone; normals_action then says "estimated, not trusted (...): fit from points only".
 // neighbourhoods (optional): those the normals were estimated or checked with (empty when the
-// cloud was too small for them).
+// cloud was too small for them). untrusted_normals (optional): the estimated normals it dropped
+// (empty when it kept them or had none), for the volume check of the fit (fit/detect/checked_fit.h).
 PointCloud ReadCloudForPrimitiveFit(const std::string& path, std::string* normals_action,
-                                    Neighbourhoods* neighbourhoods = nullptr);
+                                    Neighbourhoods* neighbourhoods = nullptr,
+                                    std::vector<Eigen::Vector3d>* untrusted_normals = nullptr);
 
 }  // namespace implicitfit

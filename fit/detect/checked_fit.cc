@@ -213,6 +213,32 @@ nlohmann::json CheckedFit::ToJson() const {
           {"support", support}};
 }
 
+bool FillsAVolume(const std::vector<Eigen::Vector3d>& points,
+                  const std::vector<Eigen::Vector3d>& normals, const NeighbourGraph& neighbours,
+                  double spacing, std::string* why) {
+  if (points.size() < kMinCheckedPoints || normals.size() != points.size() ||
+      neighbours.size() != points.size() || !(spacing > 0))
+    return false;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  std::vector<Eigen::Vector3d> x;
+  x.reserve(points.size());
+  for (const auto& p : points) x.push_back(p - centroid);
+  const DetectionScales scales = EstimateDetectionScales(x, normals, neighbours, spacing);
+  if (!scales.volume) return false;
+  if (why) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the points fill a volume at their sampling scale (spacing %.3g: no tangent "
+                  "plane through their neighbourhoods, neighbouring normals far apart), as "
+                  "detect finds too",
+                  spacing);
+    *why = text;
+  }
+  return true;
+}
+
 CheckedFit FitCheckedPrimitive(const std::vector<Eigen::Vector3d>& points,
                                const std::vector<Eigen::Vector3d>& normals,
                                const NeighbourGraph& neighbours, double spacing,

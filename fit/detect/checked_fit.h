@@ -50,6 +50,16 @@ struct CheckedFit {
   nlohmann::json ToJson() const;
 };
 
+// Whether a cloud fills a volume at its sampling scale by the detector's rule
+// (fit/detect/detection_scales.h: tangent-plane noise above 0.4 spacings and neighbouring
+// normals more than 15 deg apart; uniform random points read 0.58 spacings): then no surface
+// explains it, and `fit` refuses it as `detect` does, unless a fixed threshold says which points
+// are the inliers. normals: estimated ones, trusted or not (the fit from points alone drops
+// those it does not trust, but they still tell a volume). why: the figures, when it does.
+bool FillsAVolume(const std::vector<Eigen::Vector3d>& points,
+                  const std::vector<Eigen::Vector3d>& normals, const NeighbourGraph& neighbours,
+                  double spacing, std::string* why);
+
 // points, normals (one per point, or empty: no checks); neighbours and spacing as for
 // DetectPrimitives (datasets/normals/neighbourhoods.h); options as for FitPrimitive. When
 // options has neither threshold nor start_band, the adaptive band starts at tau.
