@@ -110,11 +110,14 @@ py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degr
 
 // As EstimateNormalsIfMissing, then the command line's trust rule for primitive fits
 // (datasets/normals/normal_trust.h: ReadCloudForPrimitiveFit).
-void EstimateTrustedNormalsIfMissing(InputCloud* in) {
+// untrusted: the estimated normals it dropped (for the volume check, as the command line's).
+void EstimateTrustedNormalsIfMissing(InputCloud* in, std::vector<Eigen::Vector3d>* untrusted) {
+  untrusted->clear();
   if (!in->estimate) return;
   EstimateNormalsIfMissing(in);
   const NormalTrust trust = AssessEstimatedNormals(in->cloud.points);
   if (!trust.trusted) {
+    untrusted->swap(in->cloud.normals);
     in->cloud.normals.clear();
     in->action = "estimated, not trusted (" + trust.reason + "): fit from points only";
   }
@@ -178,13 +181,23 @@ FitResult Fit(const py::handle& points, const py::handle& normals, const std::st
   CheckedFit checked;
   {
     py::gil_scoped_release release;
-    EstimateTrustedNormalsIfMissing(&in);
+    std::vector<Eigen::Vector3d> untrusted;
+    EstimateTrustedNormalsIfMissing(&in, &untrusted);
     // The command line's checks (fit/detect/checked_fit.h): a real primitive or a failure.
     Neighbourhoods nb;
-    if (in.cloud.has_normals() && in.cloud.size() >= kMinCheckedPoints)
+    if ((in.cloud.has_normals() || !untrusted.empty()) && in.cloud.size() >= kMinCheckedPoints)
       nb = FindNeighbourhoods(in.cloud.points);
-    checked = FitCheckedPrimitive(in.cloud.points, in.cloud.normals, nb.indices, nb.spacing,
-                                  options);
+    std::string volume;
+    if (!untrusted.empty() && !threshold &&
+        FillsAVolume(in.cloud.points, untrusted, nb.indices, nb.spacing, &volume)) {
+      checked.result.success = false;
+      checked.result.termination = FitTermination::kFailure;
+      checked.result.message = std::string("no ") + NodeTypeName(options.kind) +
+                               " explains the cloud: " + volume + " (threshold fits anyway)";
+    } else {
+      checked = FitCheckedPrimitive(in.cloud.points, in.cloud.normals, nb.indices, nb.spacing,
+                                    options);
+    }
   }
   const PrimitiveFitResult& result = checked.result;
   nlohmann::json report = PrimitiveFitReport(result, options.kind, in.cloud.size(), in.action);

@@ -139,6 +139,19 @@ def test_a_failed_fit_has_no_model_and_no_inliers():
     assert repr(result).startswith("FitResult(success=False, inliers=0 of 2000, message=")
 
 
+@pytest.mark.parametrize("kind", ["plane", "sphere", "torus"])
+def test_points_filling_a_volume_fit_no_primitive(kind):
+    # 400 uniform points in a cube, no normals: no surface explains them (the command line's
+    # volume rule, fit/detect/checked_fit.h); a fixed threshold is still the user's to give.
+    points = np.random.default_rng(3).uniform(-1, 1, (400, 3))
+    result = implicitfit.fit(points, kind=kind)
+    assert not result.success and result.model is None
+    assert "fill a volume" in result.report["message"]
+    assert len(result.inliers) == 0
+    fixed = implicitfit.fit(points, kind=kind, threshold=0.05)
+    assert "fill a volume" not in fixed.report["message"]
+
+
 def test_mesh_of_a_sphere_lies_on_it_and_is_closed():
     sphere = {"format": "implicitfit-model", "version": 1, "root": SPHERE}
     vertices, faces = implicitfit.mesh(sphere, cell=0.05)
