@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/read_json.h"
 #include "support/run_command.h"
 
 namespace {
@@ -105,7 +106,7 @@ std::map<std::string, std::vector<std::string>> SummaryRows(const std::string& c
   return by_input;
 }
 
-json ReadJson(const std::string& path) { return json::parse(Slurp(path)); }
+using testsupport::ReadJson;
 
 std::string Join(const std::vector<Truth>& truths, size_t count) {
   std::string s;

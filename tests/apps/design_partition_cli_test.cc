@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "support/read_json.h"
 #include "support/run_command.h"
 
 namespace {
@@ -15,7 +16,7 @@ using testsupport::RunCommand;
 using testsupport::WriteText;
 const std::string kCli = IMPLICITFIT_CLI;
 
-json ReadJson(const std::string& path) { return json::parse(testsupport::Slurp(path)); }
+using testsupport::ReadJson;
 
 std::string SampleBox(const std::string& name) {
   const std::string dir = testsupport::ScratchDir(name);

@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 
+#include "support/read_json.h"
 #include "support/run_command.h"
 
 namespace {
@@ -18,7 +19,7 @@ using testsupport::RunCommand;
 using testsupport::WriteText;
 const std::string kCli = IMPLICITFIT_CLI;
 
-json ReadJson(const std::string& path) { return json::parse(testsupport::Slurp(path)); }
+using testsupport::ReadJson;
 
 TEST(FitCommand, SphereFromASampledPartialViewWithOutliers) {
   const std::string dir = testsupport::ScratchDir("fit_sphere");

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "support/read_json.h"
 #include "support/run_command.h"
 
 namespace {
@@ -16,7 +17,7 @@ using testsupport::RunCommand;
 using testsupport::WriteText;
 const std::string kCli = IMPLICITFIT_CLI;
 
-json ReadJson(const std::string& path) { return json::parse(testsupport::Slurp(path)); }
+using testsupport::ReadJson;
 
 // 9 points spread over the sphere |x - (1, -2, 0.5)| = 2 (golden-angle spiral) and one stray
 // point inside it, as a CMM probes a ball; x y z only.

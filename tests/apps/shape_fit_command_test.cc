@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "support/read_json.h"
 #include "support/run_command.h"
 
 namespace {
@@ -18,7 +19,7 @@ using testsupport::RunCommand;
 using testsupport::WriteText;
 const std::string kCli = IMPLICITFIT_CLI;
 
-json ReadJson(const std::string& path) { return json::parse(testsupport::Slurp(path)); }
+using testsupport::ReadJson;
 
 std::string SampleAndFit(const std::string& name, const std::string& root,
                          const std::string& kind) {
