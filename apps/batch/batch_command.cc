@@ -92,6 +92,45 @@ nlohmann::json BatchSettings(const BatchArgs& a, bool scene, bool solid, bool mo
   return s;
 }
 
+// The Bernstein kinds (quadric-patch, cubic-patch, patch-mesh): each input fitted as `fit
+// --model KIND` with the same options would (apps/fit/fit_model_kinds.h).
+void SetBernsteinFit(const BatchArgs& a, BatchOptions* options) {
+  if (!a.fixes.empty()) throw InputError("--fix applies to primitive kinds");
+  ModelFitRequest request;
+  request.kind = a.kind;
+  request.degree = a.degree;
+  request.convex = a.convex;
+  request.cells = a.cells;
+  request.cell = a.cell;
+  request.continuity = a.continuity;
+  const bool mesh = IsMeshKind(a.kind);
+  options->model_kind = mesh ? NodeType::kBernsteinMesh : NodeType::kBernsteinPatch;
+  options->require_certified = a.convex;
+  options->model_fit = [request, mesh](const std::string& cloud) {
+    ModelFitRequest r = request;
+    r.cloud = cloud;
+    return mesh ? FitMeshCloud(r) : FitPatchCloud(r);
+  };
+}
+
+// Before any fit: no output may be an input (a cloud named like another's labels, a manifest
+// in the out-dir), the folder must take files, results of other settings must not be resumed.
+void CheckOutputsBeforeAnyFit(const BatchArgs& a, const std::vector<BatchInput>& all,
+                              const std::vector<BatchInput>& inputs, const BatchOptions& options,
+                              const std::string& summary_path, const std::string& index_name) {
+  std::vector<std::string> input_paths = a.manifests;
+  for (const BatchInput& in : all) input_paths.push_back(in.path);
+  std::vector<std::string> outputs = BatchOutputPaths(inputs, options, summary_path);
+  if (a.view) {
+    for (const BatchInput& in : inputs)
+      outputs.push_back(BatchOutputPath(options, in, ".view.html"));
+    outputs.push_back((std::filesystem::path(a.out_dir) / index_name).string());
+  }
+  RefuseOverlaps(input_paths, outputs);
+  ProbeOutputFolder(ResolveOutputPath(summary_path));
+  if (options.resume) RefuseChangedSettings(inputs, options);
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -201,42 +240,11 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.fit.num_threads =
         options.jobs > 1 ? 1 : 0;  // parallel over inputs, or inside the one fit
     options.detect.num_threads = options.fit.num_threads;
-    if (model_kind) {
-      if (!a->fixes.empty()) throw InputError("--fix applies to primitive kinds");
-      ModelFitRequest request;
-      request.kind = a->kind;
-      request.degree = a->degree;
-      request.convex = a->convex;
-      request.cells = a->cells;
-      request.cell = a->cell;
-      request.continuity = a->continuity;
-      const bool mesh = IsMeshKind(a->kind);
-      options.model_kind = mesh ? NodeType::kBernsteinMesh : NodeType::kBernsteinPatch;
-      options.require_certified = a->convex;
-      options.model_fit = [request, mesh](const std::string& cloud) {
-        ModelFitRequest r = request;
-        r.cloud = cloud;
-        return mesh ? FitMeshCloud(r) : FitPatchCloud(r);
-      };
-    }
+    if (model_kind) SetBernsteinFit(*a, &options);
 
     const std::string summary_path = (std::filesystem::path(a->out_dir) / summary_name).string();
     options.settings = BatchSettings(*a, scene, solid, model_kind);
-    // Before any fit: no output may be an input (a cloud named like another's labels, a
-    // manifest in the out-dir), the folder must take files, results of other settings must
-    // not be resumed.
-    {
-      std::vector<std::string> input_paths = a->manifests;
-      for (const BatchInput& in : all) input_paths.push_back(in.path);
-      std::vector<std::string> outputs = BatchOutputPaths(inputs, options, summary_path);
-      if (a->view) {
-        for (const BatchInput& in : inputs) outputs.push_back(BatchOutputPath(options, in, ".view.html"));
-        outputs.push_back((std::filesystem::path(a->out_dir) / index_name).string());
-      }
-      RefuseOverlaps(input_paths, outputs);
-      ProbeOutputFolder(ResolveOutputPath(summary_path));
-      if (options.resume) RefuseChangedSettings(inputs, options);
-    }
+    CheckOutputsBeforeAnyFit(*a, all, inputs, options, summary_path, index_name);
     const auto start = std::chrono::steady_clock::now();
     BatchProgress progress(inputs.size(), ::isatty(STDERR_FILENO) == 1);
     const auto on_done = [&](const BatchOutcome& o) { progress.Done(o); };
