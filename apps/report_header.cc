@@ -77,20 +77,27 @@ void AddOptions(CLI::App& command, const CommandFiles& files, nlohmann::json* se
 
 }  // namespace
 
-nlohmann::json CommandSettings(CLI::App& command) {
+namespace {
+
+nlohmann::json SettingsOf(CLI::App& command, const CommandFiles& files) {
   nlohmann::json settings = nlohmann::json::object();
-  const CommandFiles files = FilesOfCommand(command);
   AddOptions(command, files, &settings);
   if (CLI::App* tool = command.get_parent()) AddOptions(*tool, files, &settings);
   return settings;
+}
+
+}  // namespace
+
+nlohmann::json CommandSettings(CLI::App& command) {
+  return SettingsOf(command, FilesOfCommand(command));
 }
 
 void SetReportCommand(CLI::App& command, const std::string& tool_version) {
   ReportCommand& c = Current();
   c.job = command.get_name();
   c.tool_version = tool_version;
-  c.settings = CommandSettings(command);
   const CommandFiles files = FilesOfCommand(command);
+  c.settings = SettingsOf(command, files);
   c.input.clear();
   for (const std::string& file : files.inputs)
     if (c.input.empty() && IsCloudFileName(file)) c.input = file;

@@ -41,10 +41,14 @@ struct Grid {
   Vec Point(int i, int j, int k) const { return origin + h * Vec(i, j, k); }
 };
 
+int ThreadsOrDefault(int num_threads) {
+  return std::max(1, num_threads > 0 ? num_threads
+                                     : static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 void FillGrid(const Model& model, int num_threads, Grid* grid) {
   grid->values.assign(static_cast<size_t>(grid->n[0]) * grid->n[1] * grid->n[2], 0.0);
-  const int threads = std::max(
-      1, num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = ThreadsOrDefault(num_threads);
   const double tiny = 1e-12 * grid->h;
   auto slab = [&](int t) {
     for (int k = t; k < grid->n[2]; k += threads)
@@ -100,11 +104,6 @@ void DefaultMeshBox(const Model& model, Vec* box_min, Vec* box_max) {
 }
 
 namespace {
-
-int ThreadsOrDefault(int num_threads) {
-  return std::max(1, num_threads > 0 ? num_threads
-                                     : static_cast<int>(std::thread::hardware_concurrency()));
-}
 
 // 1. The box (given, or the model's own plus two cells on every side, so that a closed surface
 // stays off the faces), the cell (given, or 1/100 of the longest side), f at every grid node.
