@@ -35,6 +35,9 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
   j["filled_cavities"] = r.filled_cavities;  // unsupported pieces repaired before verification
   j["removed_pieces"] = r.removed_pieces;
   j["bridged_separators"] = r.bridged_separators;
+  // Primitives modelled as blends of the faces they round (the second attempt,
+  // fit/reconstruct/fillet_primitives.h); empty when the first attempt verified.
+  j["fillets_as_blends"] = r.fillets_as_blends;
   j["primitives"] = nlohmann::json::array();
   for (size_t k = 0; k < primitives.size() && k < r.sides.size(); ++k)
     j["primitives"].push_back(

@@ -12,6 +12,7 @@
 
 #include "fit/reconstruct/blend_refit.h"
 #include "fit/reconstruct/csg_separation.h"
+#include "fit/reconstruct/fillet_primitives.h"
 #include "fit/reconstruct/fillet_separators.h"
 #include "fit/reconstruct/offset_samples.h"
 #include "fit/reconstruct/point_assignment.h"
@@ -40,16 +41,62 @@ double NodeValue(const Model& m, int node, const Vec& x, Vec* grad, double h) {
   return m.EvaluateNode(node, p, x.data());
 }
 
+SolidReconstruction ReconstructOnce(const std::vector<Vec>& points,
+                                    const std::vector<Vec>& input_normals,
+                                    const std::vector<SolidPrimitive>& primitives,
+                                    const SolidReconstructionOptions& options);
+
 }  // namespace
+
+SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
+                                     const std::vector<Vec>& normals,
+                                     const std::vector<SolidPrimitive>& primitives,
+                                     const SolidReconstructionOptions& options) {
+  SolidReconstruction first = ReconstructOnce(points, normals, primitives, options);
+  if (first.success || !options.fillets_as_blends || !options.as_blends.empty() ||
+      first.assignment.label.size() != points.size())
+    return first;
+  Vec lo = points[0], hi = points[0];
+  for (const Vec& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  std::vector<Model> models;
+  for (const SolidPrimitive& p : primitives) models.push_back(p.model);
+  const std::vector<bool> fillets = FilletLikePrimitives(
+      points, normals, models, first.assignment, options.max_fillet * (hi - lo).norm());
+  if (std::count(fillets.begin(), fillets.end(), true) == 0) return first;
+  std::string names;
+  for (size_t k = 0; k < fillets.size(); ++k)
+    if (fillets[k]) names += (names.empty() ? "" : " ") + primitives[k].name;
+  SolidReconstructionOptions second_options = options;
+  second_options.as_blends = fillets;
+  ProgressStage stage(options.progress, "fillets as blends",
+                      "not verified (" + first.message + "); again with " + names + " as blends");
+  stage.End("");
+  SolidReconstruction second = ReconstructOnce(points, normals, primitives, second_options);
+  if (!second.success) {
+    first.message += " (again with the fillet-like " + names + " as blends: " + second.message + ")";
+    first.seconds += second.seconds;
+    return first;
+  }
+  for (size_t k = 0; k < fillets.size(); ++k)
+    if (fillets[k]) second.fillets_as_blends.push_back(primitives[k].name);
+  second.assignment = first.assignment;
+  second.seconds += first.seconds;
+  return second;
+}
 
 double ImpliedFilletRadius(double delta, double crease_angle_rad) {
   return delta / (4.0 * (1.0 - std::cos(0.5 * crease_angle_rad)));
 }
 
-SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
-                                     const std::vector<Vec>& input_normals,
-                                     const std::vector<SolidPrimitive>& primitives,
-                                     const SolidReconstructionOptions& options) {
+namespace {
+
+SolidReconstruction ReconstructOnce(const std::vector<Vec>& points,
+                                    const std::vector<Vec>& input_normals,
+                                    const std::vector<SolidPrimitive>& primitives,
+                                    const SolidReconstructionOptions& options) {
   std::vector<Vec> normals = input_normals;  // re-signed per primitive in step 2
   const auto start = std::chrono::steady_clock::now();
   SolidReconstruction out;
@@ -87,6 +134,8 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   // Crease bands that detect fitted with extra surfaces are dropped, their points assigned
   // again (fit/reconstruct/point_assignment.h).
   std::vector<bool> active(K, true);
+  for (int k = 0; k < K && k < static_cast<int>(options.as_blends.size()); ++k)
+    active[k] = !options.as_blends[k];
   PointAssignment assignment = AssignPoints(points, normals, prim, tau, active);
   if (options.drop_redundant) {
     std::vector<double> band(K);
@@ -96,6 +145,7 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
                                 &active) > 0)
       assignment = AssignPoints(points, normals, prim, tau, active);
   }
+  out.assignment = assignment;
   const std::vector<int>& label = assignment.label;
   const std::vector<double>& side_vote = assignment.side_vote;
   out.assigned = assignment.assigned;
@@ -613,9 +663,13 @@ SolidReconstruction ReconstructSolid(const std::vector<Vec>& points,
   out.bounded = out.verification.bounded;
   out.success = out.verification.verified;
   out.message = out.success ? "ok" : out.verification.message;
+  for (int k = 0; k < K && k < static_cast<int>(options.as_blends.size()); ++k)
+    if (options.as_blends[k]) out.sides[k] = "blend";
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
+
+}  // namespace
 
 std::vector<SolidPrimitive> FitLabelledPrimitives(const std::vector<Vec>& points,
                                                   const std::vector<Vec>& normals,

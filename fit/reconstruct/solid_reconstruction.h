@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "fit/common/progress.h"
+#include "fit/reconstruct/point_assignment.h"
 #include "fit/reconstruct/solid_verification.h"
 #include "fit/tree/tree_fitter.h"
 #include "model/model.h"
@@ -94,6 +95,12 @@ struct SolidReconstructionOptions {
   // Step 2: a primitive's points whose normals face the minority side are re-signed when at
   // least this share of them face the majority side.
   double resign_majority = 0.6;
+  // Per primitive (empty: none): its points are a rounding of the faces it joins, modelled by
+  // a blend of their intersection (step 4), not a literal of its own; side "blend".
+  std::vector<bool> as_blends;
+  // When the solid does not verify, a second attempt with the fillet-like primitives
+  // (fit/reconstruct/fillet_primitives.h) as blends; taken when it verifies.
+  bool fillets_as_blends = true;
   unsigned seed = 1;
   TreeFitOptions tree;
   SolidVerificationOptions verification;  // step 6
@@ -129,8 +136,13 @@ struct SolidReconstruction {
   std::string message;
   Model model;                     // the fitted solid
   std::string expression;          // e.g. "(p0 & p1 & !p2) | (p3)"
-  std::vector<std::string> sides;  // per primitive: "solid", "hole" or "unused"
+  // per primitive: "solid", "hole", "unused" or "blend" (SolidReconstructionOptions::as_blends)
+  std::vector<std::string> sides;
   std::vector<int> assigned;       // points per primitive
+  PointAssignment assignment;      // step 1, on the primitives as given
+  // The primitives of the second attempt's blends (SolidReconstructionOptions::fillets_as_blends)
+  // when it was taken; empty otherwise.
+  std::vector<std::string> fillets_as_blends;
   int unassigned = 0;
   int resigned_normals = 0;  // step 2: normals re-signed to their primitive's majority side
   bool bounded = false;  // proven by the verification (f > 0 outside verification's bounds)
