@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "datasets/clouds/cloud_file.h"
+#include "datasets/generators/cad_solids.h"
 #include "datasets/generators/fit4cad_torus.h"
 #include "datasets/generators/generated_solids.h"
 #include "datasets/generators/ground_truth.h"
@@ -92,7 +93,88 @@ std::function<double(const Vec&, Vec*)> Fit4CadSurface(const std::vector<double>
   };
 }
 
+// Truth points on internal faces (SolidCloud::truth_points_outside_internal_faces): at least a
+// quarter of a point's 16 nearest truth points carry another label whose surface passes through
+// the point (|e| below a tenth of the point's spacing) while the point lies on theirs. Two
+// surfaces meeting at a crease share only a line of such points and tangent surfaces a band a
+// spacing or two wide; a face held by two labels has them everywhere.
+std::vector<bool> InternalFacePoints(const PointTruth& truth, const std::vector<int>& labels) {
+  std::vector<bool> internal(truth.points.size(), false);
+  std::vector<int> idx;
+  std::vector<float> d2;
+  for (size_t i = 0; i < truth.points.size(); ++i) {
+    const Vec& p = truth.points[i];
+    truth.tree.nearestKSearch(pcl::PointXYZ(p.x(), p.y(), p.z()), 16, idx, d2);
+    const double tol = 0.1 * truth.radius[i];
+    int shared = 0;
+    for (int j : idx) {
+      if (labels[j] == labels[i]) continue;
+      Vec g;
+      shared += std::abs(truth.surface[j](p, &g)) < tol &&
+                std::abs(truth.surface[i](truth.points[j], &g)) < tol;
+    }
+    internal[i] = 4 * shared >= static_cast<int>(idx.size());
+  }
+  return internal;
+}
+
+// A cloud of a truth model: `points` samples with noise 0.2% of the size (and `outliers`),
+// noise-free truth samples, the first-order distance as the truth.
+SolidCloud ModelCloud(const std::string& name, const implicitfit::Model& truth, const Vec& box_min,
+                      const Vec& box_max, int points, double outliers, unsigned seed,
+                      implicitfit::SampledCloud* sampled, implicitfit::SampleOptions* options) {
+  SolidCloud c;
+  c.name = name;
+  c.size = (box_max - box_min).maxCoeff();
+  implicitfit::SampleOptions& so = *options;
+  so.count = points;
+  so.noise = 0.002 * c.size;
+  so.outlier_fraction = outliers;
+  so.seed = seed;
+  so.has_box = true;
+  so.box_min = box_min;
+  so.box_max = box_max;
+  *sampled = implicitfit::SampleModel(truth, so);
+  implicitfit::SampleOptions clean = so;
+  clean.noise = 0;
+  clean.outlier_fraction = 0;
+  clean.seed = seed + 1000;
+  c.truth_points = implicitfit::SampleModel(truth, clean).cloud.points;
+  c.truth = [truth](const Vec& x, Vec* normal) {
+    double f;
+    const Vec g = truth.Gradient(x, &f);
+    *normal = g.normalized();
+    return std::abs(f) / g.norm();
+  };
+  c.box_min = box_min;
+  c.box_max = box_max;
+  c.points = sampled->cloud.points;
+  return c;
+}
+
+// Points only: normals estimated and oriented as for a raw scan, end to end.
+void StripNormals(SolidCloud* c) {
+  implicitfit::PointCloud raw;
+  raw.points = c->points;
+  c->normals = implicitfit::EnsureOrientedNormals(&raw).action;
+  c->normals_of_points = raw.normals;
+  c->end_to_end = true;
+}
+
 }  // namespace
+
+std::vector<SolidCloud> HeldOutClouds(int points, unsigned seed) {
+  std::vector<SolidCloud> clouds;
+  for (const implicitfit::CadSolid& s : implicitfit::AllCadSolids()) {
+    implicitfit::SampledCloud sampled;
+    implicitfit::SampleOptions so;
+    SolidCloud c = ModelCloud("held out: " + s.name, s.truth, s.box_min, s.box_max, points, 0.0,
+                              seed, &sampled, &so);
+    StripNormals(&c);
+    clouds.push_back(std::move(c));
+  }
+  return clouds;
+}
 
 std::vector<SolidCloud> GeneratedClouds(int points, double outliers, unsigned seed,
                                         bool labelled_rows) {
@@ -100,33 +182,10 @@ std::vector<SolidCloud> GeneratedClouds(int points, double outliers, unsigned se
   for (implicitfit::GeneratedSolid& s : implicitfit::GeneratedParts()) solids.push_back(s);
   std::vector<SolidCloud> clouds;
   for (const implicitfit::GeneratedSolid& solid : solids) {
-    SolidCloud c;
-    c.name = solid.name;
-    c.size = (solid.box_max - solid.box_min).maxCoeff();
+    implicitfit::SampledCloud cloud;
     implicitfit::SampleOptions so;
-    so.count = points;
-    so.noise = 0.002 * c.size;
-    so.outlier_fraction = outliers;
-    so.seed = seed;
-    so.has_box = true;
-    so.box_min = solid.box_min;
-    so.box_max = solid.box_max;
-    const implicitfit::SampledCloud cloud = implicitfit::SampleModel(solid.truth, so);
-    implicitfit::SampleOptions clean = so;
-    clean.noise = 0;
-    clean.outlier_fraction = 0;
-    clean.seed = seed + 1000;
-    c.truth_points = implicitfit::SampleModel(solid.truth, clean).cloud.points;
-    const implicitfit::Model truth = solid.truth;
-    c.truth = [truth](const Vec& x, Vec* normal) {
-      double f;
-      const Vec g = truth.Gradient(x, &f);
-      *normal = g.normalized();
-      return std::abs(f) / g.norm();
-    };
-    c.box_min = solid.box_min;
-    c.box_max = solid.box_max;
-    c.points = cloud.cloud.points;
+    SolidCloud c = ModelCloud(solid.name, solid.truth, solid.box_min, solid.box_max, points,
+                              outliers, seed, &cloud, &so);
     if (labelled_rows) {  // exact normals, primitives from ground-truth labels
       SolidCloud l = c;
       l.normals = "exact";
@@ -139,11 +198,7 @@ std::vector<SolidCloud> GeneratedClouds(int points, double outliers, unsigned se
           implicitfit::FitLabelledPrimitives(l.points, l.normals_of_points, labels, kinds, seed);
       clouds.push_back(std::move(l));
     }
-    implicitfit::PointCloud raw;  // points only
-    raw.points = cloud.cloud.points;
-    c.normals = implicitfit::EnsureOrientedNormals(&raw).action;
-    c.normals_of_points = raw.normals;
-    c.end_to_end = true;
+    StripNormals(&c);
     clouds.push_back(std::move(c));
   }
   return clouds;
@@ -182,12 +237,13 @@ bool Fit4CadCloud(const std::string& data, const std::string& part, unsigned see
   c->name = "Fit4CAD " + part;
   c->points = cloud.points;
   c->normals_of_points = cloud.normals;
-  std::vector<int> labels(cloud.size(), -1);
+  std::vector<int> labels(cloud.size(), -1), truth_labels;
   PointTruth* truth = new PointTruth;  // lives for the run (the lambda below keeps it)
   for (size_t i = 0; i < cloud.size(); ++i) {
     const int k = info.labels[i] - 1;
     if (k < 0 || k >= static_cast<int>(kinds.size())) continue;
     labels[i] = k;
+    truth_labels.push_back(k);
     truth->points.push_back(cloud.points[i]);
     truth->normals.push_back(cloud.normals[i]);
     truth->surface.push_back(coefficients[k].size() == 4 || coefficients[k].size() == 10
@@ -198,6 +254,13 @@ bool Fit4CadCloud(const std::string& data, const std::string& part, unsigned see
   truth->Build();
   c->truth = [truth](const Vec& x, Vec* n) { return truth->Distance(x, n); };
   c->truth_points = truth->points;
+  const std::vector<bool> internal = InternalFacePoints(*truth, truth_labels);
+  for (size_t i = 0; i < internal.size(); ++i) {
+    if (internal[i])
+      ++c->internal_face_points;
+    else
+      c->truth_points_outside_internal_faces.push_back(truth->points[i]);
+  }
   c->end_to_end = true;
   if (labelled_rows) {
     try {

@@ -25,6 +25,12 @@ struct SolidCloud {
   std::vector<Vec> points, normals_of_points;
   TruthDistance truth;
   std::vector<Vec> truth_points;
+  // Truth points on an internal face: where two labelled surfaces coincide with their points
+  // interleaved (Fit4CAD PC155: the slab's top face under the dome and the dome's own base, two
+  // bodies touching). No one-piece solid has a surface there; the rows "internal faces left
+  // out" measure every method without them. Empty when the truth has none.
+  std::vector<Vec> truth_points_outside_internal_faces;
+  size_t internal_face_points = 0;
   Vec box_min = Vec::Zero(), box_max = Vec::Zero();  // the meshing box
   double size = 1.0;                                 // longest side of the cloud's box
   // How implicitfit starts: labelled primitives (non-empty), and/or end to end (detect first).
@@ -37,6 +43,11 @@ struct SolidCloud {
 // stripped, then estimated and oriented as for a raw scan) end to end.
 std::vector<SolidCloud> GeneratedClouds(int points, double outliers, unsigned seed,
                                         bool labelled_rows);
+
+// Held out (`--heldout 1`): the CAD-like solids of the patch-mesh benchmark
+// (datasets/generators/cad_solids.h: rotated generically, a paraboloid dome, chamfers, a saddle
+// face), never used to tune reconstruct; points only, sampled as GeneratedClouds, end to end.
+std::vector<SolidCloud> HeldOutClouds(int points, unsigned seed);
 
 // A Fit4CAD part as given (points and labels; normals estimated and oriented as `reconstruct`
 // does): labelled primitives (diagnostic) and end to end on the same normals. False (and why)
