@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit/reconstruct/blend_order.h"
 #include "fit/tree/tree_covariance.h"
 #include "model/median.h"
 
@@ -155,7 +156,7 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
       fit_points.push_back(points[i]);
       fit_normals.push_back(normals[i]);
     }
-    const TreeFitResult fit = FitModelTree(sub, fit_points, fit_normals, options);
+    TreeFitResult fit = FitModelTree(sub, fit_points, fit_normals, options);
     seconds += fit.seconds;
     iterations += fit.iterations;
     if (!fit.success) {
@@ -163,6 +164,19 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
       failed.model = m;
       return failed;
     }
+    // The fold order of n-ary blends (fit/reconstruct/blend_order.h), refitted when it changed.
+    Model reordered = fit.model;
+    if (ChooseChildOrders(&reordered, fit_points, clip)) {
+      const TreeFitResult again = FitModelTree(reordered, fit_points, fit_normals, options);
+      seconds += again.seconds;
+      iterations += again.iterations;
+      if (again.success && TruncatedCost(again.model, fit_points, clip) <
+                               TruncatedCost(fit.model, fit_points, clip))
+        fit = again;
+    }
+    std::vector<int> unmap(sub.nodes().size(), -1);
+    for (size_t s = 0; s < map.size(); ++s)
+      if (map[s] >= 0) unmap[map[s]] = static_cast<int>(s);
     Model blended = m, unblended = m;
     for (size_t s = 0; s < map.size(); ++s) {
       if (map[s] < 0) continue;
@@ -170,7 +184,10 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
       const ModelNode& to = m.nodes()[s];
       std::copy_n(fit.model.parameters().begin() + from.first_parameter, to.num_parameters,
                   blended.mutable_parameters().begin() + to.first_parameter);
-      if (IsOperator(to.type)) unblended.mutable_nodes()[s].order = 0;
+      if (!IsOperator(to.type)) continue;
+      unblended.mutable_nodes()[s].order = 0;
+      for (size_t c = 0; c < from.children.size(); ++c)  // the chosen fold order
+        blended.mutable_nodes()[s].children[c] = unmap[from.children[c]];
     }
     // Kept only when it explains the points better than the sharp edges do.
     m = TruncatedCost(blended, points, clip) < TruncatedCost(unblended, points, clip) ? blended
