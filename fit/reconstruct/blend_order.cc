@@ -11,27 +11,16 @@ using Vec = Eigen::Vector3d;
 
 constexpr size_t kMinCornerPoints = 10;
 
-double Cost(const Model& m, const std::vector<Vec>& points, double clip) {
-  double cost = 0;
-  for (const Vec& x : points) {
-    double f;
-    const Vec g = m.Gradient(x, &f);
-    const double d = std::abs(f) / std::sqrt(g.squaredNorm() + 1e-300);
-    cost += std::min(d * d, clip * clip);
-  }
-  return cost;
-}
-
 // The cost with operator o's epsilon the best of its own and three shares of its delta.
 double BestEpsilonCost(Model* m, int o, const std::vector<Vec>& points, double clip,
                        double* best_epsilon = nullptr) {
   const int first = m->nodes()[o].first_parameter;
   std::vector<double>& p = m->mutable_parameters();
   const double delta = p[first], own = p[first + 1];
-  double best = Cost(*m, points, clip), epsilon = own;
+  double best = TruncatedCost(*m, points, clip), epsilon = own;
   for (double share : {0.3, 0.6, 0.9}) {
     p[first + 1] = share * delta;
-    const double c = Cost(*m, points, clip);
+    const double c = TruncatedCost(*m, points, clip);
     if (c < best) {
       best = c;
       epsilon = p[first + 1];
@@ -43,6 +32,17 @@ double BestEpsilonCost(Model* m, int o, const std::vector<Vec>& points, double c
 }
 
 }  // namespace
+
+double TruncatedCost(const Model& m, const std::vector<Vec>& points, double clip) {
+  double cost = 0;
+  for (const Vec& x : points) {
+    double f;
+    const Vec g = m.Gradient(x, &f);
+    const double d = std::abs(f) / std::sqrt(g.squaredNorm() + 1e-300);
+    cost += std::min(d * d, clip * clip);
+  }
+  return cost;
+}
 
 bool ChooseChildOrders(Model* m, const std::vector<Vec>& points, double clip) {
   bool changed = false;

@@ -28,6 +28,10 @@
 
 namespace implicitfit {
 
+// sum_i min(d_i^2, clip^2) with d_i = |f| / |grad f| (MSAC's truncated quadratic): the cost by
+// which both the order search and the blend refit (blend_refit.cc) compare two solids.
+double TruncatedCost(const Model& m, const std::vector<Eigen::Vector3d>& points, double clip);
+
 // True when some operator's children were reordered.
 bool ChooseChildOrders(Model* m, const std::vector<Eigen::Vector3d>& points, double clip);
 

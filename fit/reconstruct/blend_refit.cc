@@ -103,18 +103,6 @@ std::vector<size_t> PointsOfSubtree(const Model& sub, const std::vector<Vec>& po
   return mine;
 }
 
-// sum_i min(d_i^2, clip^2), d_i = f / |grad f| (MSAC's truncated quadratic).
-double TruncatedCost(const Model& m, const std::vector<Vec>& points, double clip) {
-  double cost = 0;
-  for (const Vec& x : points) {
-    double f;
-    const Vec g = m.Gradient(x, &f);
-    const double d = std::abs(f) / std::sqrt(g.squaredNorm() + 1e-300);
-    cost += std::min(d * d, clip * clip);
-  }
-  return cost;
-}
-
 }  // namespace
 
 TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
