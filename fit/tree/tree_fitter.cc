@@ -87,6 +87,7 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
     return d;
   };
 
+  const std::vector<char> constant = parameters.ConstantSubtrees(result.model);
   double loss_scale = 0.01 * diagonal;
   const int threads = ThreadCountOrDefault(options.num_threads);
   ceres::Solver::Summary summary;
@@ -99,7 +100,8 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
                                             {0, 0, 0},
                                             has_normals,
                                             options.normal_weight,
-                                            h};
+                                            h,
+                                            &constant};
       if (has_normals)
         for (int k = 0; k < 3; ++k) functor->n[k] = normals[i][k];
       auto* cost = new ceres::DynamicAutoDiffCostFunction<TreePointResidual, 8>(functor);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace implicitfit {
 
@@ -212,6 +213,32 @@ int TreeParameters::RestartCollapsedEpsilons(double min_ratio) {
       ++restarted;
     }
   return restarted;
+}
+
+std::vector<char> TreeParameters::ConstantSubtrees(const Model& model) const {
+  const std::vector<ModelNode>& nodes = model.nodes();
+  std::vector<char> constant(nodes.size(), 0), done(nodes.size(), 0);
+  // Children before parents (depth-first from the root; the tree has no cycles).
+  std::vector<std::pair<int, bool>> stack{{model.root(), false}};
+  while (!stack.empty()) {
+    auto [index, children_done] = stack.back();
+    stack.pop_back();
+    if (done[index]) continue;
+    const ModelNode& node = nodes[index];
+    if (!children_done) {
+      stack.push_back({index, true});
+      for (int child : node.children)
+        if (!done[child]) stack.push_back({child, false});
+      continue;
+    }
+    bool fixed = true;
+    for (int i = 0; i < node.num_parameters && fixed; ++i)
+      fixed = entries_[node.first_parameter + i].block < 0;
+    for (int child : node.children) fixed = fixed && constant[child];
+    constant[index] = fixed;
+    done[index] = 1;
+  }
+  return constant;
 }
 
 }  // namespace implicitfit

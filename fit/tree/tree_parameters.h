@@ -67,6 +67,9 @@ class TreeParameters {
   // epsilon (1 - epsilon / delta) -> 0) where a pass far from the solution can strand it.
   // Returns how many restarted.
   int RestartCollapsedEpsilons(double min_ratio);
+  // One flag per node of the model: 1 when no parameter of its subtree is free (the subtree's
+  // f is a constant of the fit; fit/tree/pruned_tree_evaluation.h evaluates it once in double).
+  std::vector<char> ConstantSubtrees(const Model& model) const;
 
   // How a block is parameterised (from its field's role, or the node type's own rules).
   enum class Kind {

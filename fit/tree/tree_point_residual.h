@@ -27,6 +27,7 @@ struct TreePointResidual {
   bool has_normal;
   double normal_weight;
   double h;
+  const std::vector<char>* constant = nullptr;  // TreeParameters::ConstantSubtrees, or none
 
   template <typename T>
   bool operator()(T const* const* blocks, T* residuals) const {
@@ -43,7 +44,8 @@ struct TreePointResidual {
     // (fit/tree/pruned_tree_evaluation.h): the same f and derivatives, to rounding.
     auto evaluate = [&](const double* xd) {
       const T xt[3] = {T(xd[0]), T(xd[1]), T(xd[2])};
-      return PrunedEvaluate(*model, flat.data(), values.data(), xt, xd);
+      return PrunedEvaluate(*model, flat.data(), values.data(), xt, xd,
+                            constant ? constant->data() : nullptr);
     };
     const T f = evaluate(x);
     T g[3];

@@ -4,6 +4,8 @@
 // from them (where most children are skipped).
 #include "fit/tree/pruned_tree_evaluation.h"
 
+#include "fit/tree/tree_parameters.h"
+
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -89,6 +91,43 @@ void ExpectSameAsModelEvaluate(const Model& m, int seed) {
 TEST(PrunedTreeEvaluation, DesignLikeIntersection) { ExpectSameAsModelEvaluate(DesignLike(), 1); }
 TEST(PrunedTreeEvaluation, NestedOperatorsOfEveryKind) { ExpectSameAsModelEvaluate(Nested(), 2); }
 TEST(PrunedTreeEvaluation, ConvexSmoothing) { ExpectSameAsModelEvaluate(ConvexSmoothing(), 3); }
+
+// With every primitive's fields fixed (the blend refit of `reconstruct`), the constant
+// subtrees are the leaves, and evaluating them once in double (the `constant` flags) gives the
+// same value and the same derivatives w.r.t. the free parameters (the operators' delta and
+// epsilon) as Model::Evaluate on Jets.
+TEST(PrunedTreeEvaluation, ConstantSubtreesOfFixedPrimitivesChangeNothing) {
+  Model m = Nested();
+  for (ModelNode& node : m.mutable_nodes()) {
+    if (IsOperator(node.type)) continue;
+    for (const ParameterField& field : ParameterFieldsOf(node.type))
+      node.fixed.push_back(field.name);
+  }
+  const std::vector<char> constant = TreeParameters(m).ConstantSubtrees(m);
+  ASSERT_EQ(constant.size(), m.nodes().size());
+  for (size_t i = 0; i < m.nodes().size(); ++i)
+    EXPECT_EQ(constant[i] != 0, !IsOperator(m.nodes()[i].type)) << "node " << i;
+  const std::vector<double>& p = m.parameters();
+  std::vector<Jet> pj(p.size());
+  std::vector<bool> free(p.size(), false);
+  for (const ModelNode& node : m.nodes())
+    if (IsOperator(node.type))
+      for (int k = 0; k < node.num_parameters; ++k) free[node.first_parameter + k] = true;
+  for (size_t i = 0; i < p.size(); ++i)
+    pj[i] = free[i] ? Jet(p[i], static_cast<int>(i)) : Jet(p[i]);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  for (int n = 0; n < 3000; ++n) {
+    const double xd[3] = {u(rng), u(rng), u(rng)};
+    const Jet xj[3] = {Jet(xd[0]), Jet(xd[1]), Jet(xd[2])};
+    const Jet full = m.Evaluate(pj.data(), xj);
+    const Jet pruned = PrunedEvaluate(m, pj.data(), p.data(), xj, xd, constant.data());
+    ASSERT_NEAR(pruned.a, full.a, 1e-14 * (1.0 + std::abs(full.a)));
+    for (size_t i = 0; i < p.size(); ++i)
+      ASSERT_NEAR(pruned.v[i], full.v[i], 1e-12 * (1.0 + full.v.cwiseAbs().maxCoeff()))
+          << "parameter " << i << " at " << xd[0] << " " << xd[1] << " " << xd[2];
+  }
+}
 
 }  // namespace
 }  // namespace implicitfit
