@@ -9,10 +9,18 @@
 #include "apps/command.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
-#include "datasets/meshing/model_mesher.h"
-#include "model/file/clip_to_tetrahedron.h"
+#include "jobs/mesh_job.h"
 
 namespace implicitfit {
+namespace {
+
+bool HasBernsteinPatch(const Model& model) {
+  for (const ModelNode& node : model.nodes())
+    if (node.type == NodeType::kBernsteinPatch) return true;
+  return false;
+}
+
+}  // namespace
 
 CommandAction AddMeshCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -35,33 +43,30 @@ CommandAction AddMeshCommand(CLI::App& app) {
   return [model_path, out, box, cell, clip]() {
     if (*out != "-" && (out->size() < 4 || out->substr(out->size() - 4) != ".ply"))
       throw InputError(*out + ": unsupported output format (use .ply, or - for stdout)");
-    Model model = ReadModelFile(*model_path);
-    if (*clip) {
-      int clipped = 0;
-      model = ClipPatchesToTetrahedra(model, &clipped);
-      if (clipped == 0)
-        throw InputError(*model_path + ": --clip-to-tetrahedron: the model has no bernstein_patch");
-    }
-    MeshOptions options;
-    options.cell = *cell;
+    const Model model = ReadModelFile(*model_path);
+    MeshJobOptions options;
+    options.clip_to_tetrahedron = *clip;
+    if (*clip && !HasBernsteinPatch(model))
+      throw InputError(*model_path + ": --clip-to-tetrahedron: the model has no bernstein_patch");
+    options.mesh.cell = *cell;
     if (box->size() == 6) {
-      options.has_box = true;
-      options.box_min = Eigen::Vector3d((*box)[0], (*box)[1], (*box)[2]);
-      options.box_max = Eigen::Vector3d((*box)[3], (*box)[4], (*box)[5]);
-      if (!options.box_min.allFinite() || !options.box_max.allFinite() ||
-          !((options.box_max - options.box_min).array() > 0).all())
-        throw InputError("--box: needs xmin < xmax, ymin < ymax, zmin < zmax (finite)");
+      options.mesh.has_box = true;
+      options.mesh.box_min = Eigen::Vector3d((*box)[0], (*box)[1], (*box)[2]);
+      options.mesh.box_max = Eigen::Vector3d((*box)[3], (*box)[4], (*box)[5]);
     }
-    MeshResult result;
+    std::string error;
+    if (!options.IsValid(&error)) throw InputError("--" + error);
+    MeshJobResult job;
     try {
-      result = MeshModel(model, options);
+      job = MeshModelJob(model, options);
     } catch (const std::invalid_argument& e) {
       throw InputError(*model_path + ": " + e.what());
     }
-    if (result.mesh.triangles.empty()) {
-      std::cerr << "implicitfit mesh: " << *model_path << ": the zero set does not cross the box\n";
+    if (!job.success) {
+      std::cerr << "implicitfit mesh: " << *model_path << ": " << job.message << "\n";
       return 1;
     }
+    const MeshResult& result = job.result;
     WriteMeshPlyFile(result.mesh, *out);
     std::cout << "vertices " << result.mesh.vertices.size() << "\ntriangles "
               << result.mesh.triangles.size() << "\ncell " << result.cell << "\nmax_abs_value "

@@ -104,41 +104,22 @@ void SetReportCommand(CLI::App& command, const std::string& tool_version) {
   if (c.input.empty() && !files.inputs.empty()) c.input = files.inputs.front();
 }
 
-namespace {
-
-template <typename Json>
-Json AddHeader(Json report, const std::string& input) {
+ReportHeader CommandReportHeader(const std::string& input) {
   const ReportCommand& c = Current();
-  if (!report.is_object()) return report;
-  const auto set = [&](const char* key, const Json& value) {
-    if (!report.contains(key)) report[key] = value;
-  };
-  set("format", "implicitfit-report");
-  set("format_version", 1);
-  set("job", c.job.empty() ? Json(nullptr) : Json(c.job));
-  set("tool_version", c.tool_version);
-  Json in = Json::object();
-  in["path"] = input.empty() ? c.input : input;
-  in["points"] = report.contains("points") ? report["points"] : Json(nullptr);
-  in["normals"] = report.contains("normals") ? report["normals"] : Json(nullptr);
-  set("input", in);
-  set("settings", Json(c.settings));
-  if (c.settings.contains("seed")) set("seed", Json(c.settings["seed"]));
-  Json units = Json::object();
-  units["length"] = "input";
-  units["angle"] = "degree";
-  set("units", units);
-  return report;
+  ReportHeader header;
+  header.job = c.job;
+  header.tool_version = c.tool_version;
+  header.input = input.empty() ? c.input : input;
+  header.settings = c.settings;
+  return header;
 }
 
-}  // namespace
-
 nlohmann::json WithReportHeader(nlohmann::json report, const std::string& input) {
-  return AddHeader(std::move(report), input);
+  return WithReportHeader(std::move(report), CommandReportHeader(input));
 }
 
 nlohmann::ordered_json WithReportHeader(nlohmann::ordered_json report, const std::string& input) {
-  return AddHeader(std::move(report), input);
+  return WithReportHeader(std::move(report), CommandReportHeader(input));
 }
 
 void WriteReportFile(const std::string& path, const nlohmann::json& report,

@@ -1,22 +1,19 @@
-// The header of every JSON report the command line writes (docs/cli.md "Reports";
-// docs/schemas/report.schema.json), so that a report read months later says what produced it:
-//   "format": "implicitfit-report", "format_version": 1,
-//   "job": the command ("fit", "detect", "reconstruct", "verify", "batch", ...),
-//   "tool_version": implicitfit's version,
-//   "input": {"path": the cloud, "points": its points, "normals": where its normals came from},
-//   "settings": every option of the run, given or defaulted, by name without the dashes
-//              (files the run reads or writes left out: they are in "input" or are the outputs),
-//   "seed": the run's random seed, when the command has one (also in "settings"),
-//   "units": {"length": "input", "angle": "degree"}: lengths (distances, radii, RMS, tolerances)
-//            are in the cloud's own units, never converted; angles in degrees.
-// The keys a report already has are left as they are.
+// The command line's side of the report header (jobs/report_header.h builds it): the job is the
+// command, the input its cloud argument (else its first input file) and the settings every
+// option of the run, given or defaulted, by name without the dashes (files the run reads or
+// writes left out).
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "jobs/report_header.h"
+
 namespace implicitfit {
+
+// The header of the command being run (after SetReportCommand); `input` as below.
+ReportHeader CommandReportHeader(const std::string& input = "");
 
 // Remembers the command being run (its name, settings and input); main calls it once, after
 // parsing.

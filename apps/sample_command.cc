@@ -13,7 +13,7 @@
 #include "datasets/io/read_limits.h"
 #include "datasets/io/truth_labels.h"
 #include "datasets/io/model_file.h"
-#include "datasets/generators/model_sampler.h"
+#include "jobs/sample_job.h"
 #include "datasets/clouds/ply_writer.h"
 #include "datasets/clouds/xyz_writer.h"
 
@@ -23,7 +23,8 @@ CommandAction AddSampleCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("sample", "Sample oriented points on a model's zero set");
   auto model_path = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  auto options = std::make_shared<SampleOptions>();
+  auto job_options = std::make_shared<SampleJobOptions>();
+  SampleOptions* options = &job_options->sample;
   auto view = std::make_shared<std::vector<double>>();
   auto truth = std::make_shared<std::string>();
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
@@ -49,7 +50,7 @@ CommandAction AddSampleCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--truth", *truth,
                   "Also write the truth labels: leaf primitive of each point, -1 for outliers");
-  return [model_path, out, options, view, truth]() {
+  return [model_path, out, job_options, options, view, truth]() {
     const size_t dot = out->find_last_of('.');
     const std::string ext = *out == "-" ? "xyz" : dot == std::string::npos ? "" : out->substr(dot + 1);
     const bool ply = ext == "ply";
@@ -63,28 +64,19 @@ CommandAction AddSampleCommand(CLI::App& app) {
                        " points (raise it with --max-points)");
     if (view->size() == 3) options->view_dir = Eigen::Vector3d((*view)[0], (*view)[1], (*view)[2]);
     const Model model = ReadModelFile(*model_path);
-    SampledCloud sampled;
-    try {
-      sampled = SampleModel(model, *options);
-    } catch (const std::runtime_error& e) {
-      std::cerr << "implicitfit sample: " << *model_path << ": " << e.what() << "\n";
+    std::string error;
+    if (!job_options->IsValid(&error)) throw InputError("--" + error);
+    const SampleJobResult job = SampleModelJob(model, *job_options);
+    if (!job.success) {
+      std::cerr << "implicitfit sample: " << *model_path << ": " << job.message << "\n";
       return 1;
     }
-    std::vector<NodeType> kinds;
-    for (int node : sampled.leaf_nodes) kinds.push_back(model.nodes()[node].type);
-    for (int l : sampled.primitive) {
-      const NodeType k = l >= 0 ? kinds[l] : NodeType::kPlane;
-      if (!(k == NodeType::kPlane || k == NodeType::kSphere || k == NodeType::kCylinder ||
-            k == NodeType::kCone || k == NodeType::kTorus)) {
-        kinds.clear();  // a kind the detector does not know: labels only
-        break;
-      }
-    }
+    const SampledCloud& sampled = job.sampled;
     if (ply)
       WritePlyFile(sampled.cloud, *out);
     else
       WriteXyzFile(sampled.cloud, *out);
-    if (!truth->empty()) WriteTruthFile(sampled.primitive, kinds, *truth);
+    if (!truth->empty()) WriteTruthFile(sampled.primitive, job.truth_kinds, *truth);
     return 0;
   };
 }
