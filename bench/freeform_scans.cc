@@ -58,6 +58,7 @@ struct Row {
   std::string name;
   size_t points = 0;
   int primitives = 0, remainder = 0, region_points = 0, surfaces = 0, assigned = 0;
+  int false_assigned = 0;  // assigned with |residual| > 3 detector sigma
   double rms = 0, worst_rms = 0, sigma_detector = 0, sigma_plane_free = 0, sigma_plane_all = 0;
   double seconds_detect = 0, seconds_freeform = 0;
 };
@@ -88,11 +89,15 @@ Row RunScan(const std::string& name, const std::string& path) {
         free[i] = 1;
         ++row.assigned;
         sum2 += d.result.residuals[i] * d.result.residuals[i];
+        row.false_assigned += std::abs(d.result.residuals[i]) > 3.0 * d.result.noise;
       }
   }
   row.remainder = d.scene.unassigned + row.assigned;
   row.rms = row.assigned ? std::sqrt(sum2 / row.assigned) : 0.0;
-  std::fprintf(stderr, "%s: detection %.1f s, noise...\n", name.c_str(), row.seconds_detect);
+  std::fprintf(stderr, "%s: detection %.1f s; assigned with residual > 3 sigma: %d; lost points "
+               "by reason: %s; rejections: %s\n", name.c_str(), row.seconds_detect,
+               row.false_assigned, ff.at("lost_points").dump().c_str(),
+               ff.at("rejected").dump().c_str());
   const int k = 12;
   const std::vector<double> r = LocalPlaneResiduals(d.cloud.points, k);
   const double leverage = (k + 1.0) / (k + 1.0 - 3.0);

@@ -101,7 +101,8 @@ void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& optio
                                          {"rms_over_2_sigma", f.rms_over},
                                          {"small_parts", f.small_parts},
                                          {"small_part_points", f.small_part_points},
-                                         {"depth_limit", f.depth_limit}}}};
+                                         {"depth_limit", f.depth_limit}}},
+                           {"lost_points", f.lost_points}};
   if (!f.surfaces.empty()) d->report["kinds"]["bspline_surface"] = f.surfaces.size();
 }
 

@@ -81,6 +81,8 @@ class FreeformStage {
     if (static_cast<int>(region.size()) < o_.min_points) {
       ++result_.small_parts;
       result_.small_part_points += static_cast<int>(region.size());
+      result_.lost_points[depth == 0 ? "small_region" : "small_part"] +=
+          static_cast<int>(region.size());
       return;
     }
     std::vector<Vec> p, n;
@@ -89,26 +91,27 @@ class FreeformStage {
     try {
       frame = FitParameterFrame(p, n);
     } catch (const std::invalid_argument&) {
+      result_.lost_points["no_frame"] += static_cast<int>(region.size());
       return;
     }
     int folded = 0;
     for (const Vec& x : n) folded += x.dot(frame.normal) < std::cos(80.0 * M_PI / 180.0);
     if (folded > 0.02 * n.size()) {
       ++result_.folded;
-      Split(region, p, depth);
+      Split(region, p, depth, "folded");
       return;
     }
     const Candidate best = BestGrid(p, n, frame);
     if (!best.ok) {
       ++result_.no_grid;
-      Split(region, p, depth);
+      Split(region, p, depth, "no_grid");
       return;
     }
     // Support, refit on it, support again (step 4).
     std::vector<int> support = Support(region, best.fit.ToModel());
     if (static_cast<int>(support.size()) < o_.min_points) {
       ++result_.small_support;
-      Split(region, p, depth);
+      Split(region, p, depth, "small_support");
       return;
     }
     SurfaceFitOptions fo = FitOptions(best.fit.count_u, best.fit.count_v, true);
@@ -131,8 +134,9 @@ class FreeformStage {
     }
     const double rms = support.empty() ? INFINITY : std::sqrt(sum / support.size());
     if (static_cast<int>(support.size()) < o_.min_points || rms > 2.0 * o_.noise) {
-      ++(rms > 2.0 * o_.noise ? result_.rms_over : result_.small_support);
-      Split(region, p, depth);
+      const bool over = rms > 2.0 * o_.noise;
+      ++(over ? result_.rms_over : result_.small_support);
+      Split(region, p, depth, over ? "rms_over" : "small_support");
       return;
     }
     FreeformSurface surface;
@@ -152,6 +156,8 @@ class FreeformStage {
       if (!assigned_.count(i)) rest.push_back(i);
     if (depth < o_.max_depth)
       for (const std::vector<int>& part : SmoothParts(rest)) Process(part, depth + 1);
+    else
+      result_.lost_points["rest_at_depth_limit"] += static_cast<int>(rest.size());
   }
 
   std::vector<std::vector<int>> SmoothParts(const std::vector<int>& subset) {
@@ -233,9 +239,12 @@ class FreeformStage {
   }
 
   // Step 2's split at the median of the longest principal axis; each half's smooth parts.
-  void Split(const std::vector<int>& region, const std::vector<Vec>& p, int depth) {
+  // `why`: the test that refused the region, for the points lost at max_depth.
+  void Split(const std::vector<int>& region, const std::vector<Vec>& p, int depth,
+             const char* why) {
     if (depth >= o_.max_depth) {
       ++result_.depth_limit;
+      result_.lost_points[std::string("depth_limit/") + why] += static_cast<int>(region.size());
       return;
     }
     ++result_.splits;

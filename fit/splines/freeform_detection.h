@@ -25,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ struct FreeformResult {
   // refused at max_depth.
   int folded = 0, no_grid = 0, small_support = 0, rms_over = 0, small_parts = 0, depth_limit = 0;
   int small_part_points = 0;
+  // Points left unassigned inside the smooth regions, by the last test that refused them
+  // ("depth_limit/<test>" for the parts refused at max_depth; "small_part": under min_points
+  // after a split or beside an accepted patch; "rest_at_depth_limit": beside a patch at max_depth).
+  std::map<std::string, int> lost_points;
   double seconds = 0.0;
 };
 
