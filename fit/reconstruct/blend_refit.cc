@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fit/reconstruct/blend_order.h"
+#include "fit/tree/blend_order.h"
 #include "fit/tree/tree_covariance.h"
 #include "model/median.h"
 
@@ -152,7 +152,7 @@ TreeFitResult RefitBlends(const Model& solid, const std::vector<Vec>& points,
       failed.model = m;
       return failed;
     }
-    // The fold order of n-ary blends (fit/reconstruct/blend_order.h), refitted when it changed.
+    // The fold order of n-ary blends (fit/tree/blend_order.h), refitted when it changed.
     Model reordered = fit.model;
     if (ChooseChildOrders(&reordered, fit_points, clip)) {
       const TreeFitResult again = FitModelTree(reordered, fit_points, fit_normals, options);

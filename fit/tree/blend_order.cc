@@ -1,4 +1,4 @@
-#include "fit/reconstruct/blend_order.h"
+#include "fit/tree/blend_order.h"
 
 #include <algorithm>
 #include <cmath>

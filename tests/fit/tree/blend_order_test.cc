@@ -1,4 +1,4 @@
-// The fold order of an n-ary blend (fit/reconstruct/blend_order.h). Truth: the generated rounded
+// The fold order of an n-ary blend (fit/tree/blend_order.h). Truth: the generated rounded
 // box (six planes -x, +x, -y, +y, -z, +z folded in that order, delta 0.2, epsilon 0.12); its
 // noise-free samples (datasets/generators/model_sampler.h) lie on its zero set. The same tree with
 // the children reversed is another surface at the corners; the chosen order must give the
@@ -10,7 +10,7 @@
 
 #include "datasets/generators/generated_solids.h"
 #include "datasets/generators/model_sampler.h"
-#include "fit/reconstruct/blend_order.h"
+#include "fit/tree/blend_order.h"
 
 namespace implicitfit {
 namespace {
