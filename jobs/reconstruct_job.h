@@ -12,7 +12,7 @@
 //    "verification": SolidVerification::ToJson() (fit/reconstruct/solid_verification.h; absent
 //    when the reconstruction stopped before a solid was built). "success" and "bounded" are true
 //    only when the verification passed / proved it.
-// Progress (stages "detect", "orientation", ..., "verification") goes to `progress`.
+// Progress (stages "detect", "orientation", ..., "verification") goes to options.progress.
 #pragma once
 
 #include <nlohmann/json.hpp>
