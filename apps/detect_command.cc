@@ -96,10 +96,9 @@ CommandAction AddDetectCommand(CLI::App& app) {
       d.report["score"]["truth"] = truth.source;
       std::printf("score against %s: %s\n", truth.source.c_str(), s.Line().c_str());
     }
-    if (!a->report.empty()) WriteReportFile(a->report, d.report);
-    if (d.scene.primitives.empty()) {
-      std::cerr << "implicitfit detect: " << a->cloud << ": no primitive found"
-                << (d.degenerate ? " (too few points to estimate normals)" : "") << "\n";
+    if (!a->report.empty()) WriteReportFile(a->report, d.ToJson(CommandReportHeader()));
+    if (!d.success) {
+      std::cerr << "implicitfit detect: " << a->cloud << ": " << d.message << "\n";
       return 1;
     }
     WriteDetection(d, a->out, a->labels, a->ply);
@@ -108,9 +107,7 @@ CommandAction AddDetectCommand(CLI::App& app) {
       std::printf("%s %s points %d rms %.6g normals %s\n", p.name.c_str(),
                   NodeTypeName(p.model.nodes()[0].type), p.points, p.rms_distance,
                   p.normal_side.c_str());
-    std::printf("points %d  primitives %zu  unassigned %d  threshold %.6g  %.3f s\n",
-                d.scene.points, d.scene.primitives.size(), d.scene.unassigned, d.result.threshold,
-                d.result.seconds);
+    std::printf("%s\n", d.BriefReport().c_str());
     return 0;
   };
 }

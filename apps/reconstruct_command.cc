@@ -39,17 +39,6 @@ struct ReconstructArgs {
   bool quiet = false, keep_unverified = false;
 };
 
-// "14 primitives, 1 solid, 0 cavities, rms 0.0123" (the summary's details).
-std::string Details(const SolidReconstruction& r, size_t primitives) {
-  std::string d = std::to_string(primitives) + " primitives";
-  if (r.verification.points > 0)
-    d += ", " + std::to_string(r.verification.components.solids) + " solid piece(s), " +
-         std::to_string(r.verification.components.cavities) + " cavities";
-  char rms[48];
-  std::snprintf(rms, sizeof rms, ", rms %.4g", r.rms);
-  return d + rms;
-}
-
 // Before any work: every output's folder exists and is writable, and no output is the cloud
 // (a missing folder used to fail only after the whole reconstruction).
 void CheckOutputs(const ReconstructArgs& a) {
@@ -92,7 +81,11 @@ CommandAction AddReconstructCommand(CLI::App& app) {
     CheckOutputs(*a);
     const auto start = std::chrono::steady_clock::now();
     const ProgressCallback progress = StderrProgress("reconstruct", a->quiet);
-    CloudReconstruction job = ReconstructCloudFile(a->cloud, a->scene, a->seed, progress);
+    ReconstructJobOptions options;
+    options.scene = a->scene;
+    options.seed = a->seed;
+    options.progress = progress;
+    CloudReconstruction job = ReconstructCloudFile(a->cloud, options);
     const PointCloud& cloud = job.cloud;
     const SolidReconstruction& r = job.result;
     nlohmann::json& report = job.report;
@@ -123,7 +116,7 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       if (!a->mesh.empty()) WriteMeshPlyFile(mesh, a->mesh);
     }
     if (!a->report.empty())  // also when verification failed: the reasons
-      WriteReportFile(a->report, report);
+      WriteReportFile(a->report, job.ToJson(CommandReportHeader()));
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.success) {
@@ -134,9 +127,9 @@ CommandAction AddReconstructCommand(CLI::App& app) {
       return 1;
     }
     if (!a->view.empty()) WriteReconstructionView(job, a->cloud, a->view);
-    std::cout << WithReportHeader(report).dump(2) << "\n";
+    std::cout << job.ToJson(CommandReportHeader()).dump(2) << "\n";
     PrintSummary("reconstruct", a->quiet, true, "verified solid", seconds,
-                 Details(r, job.primitives.size()) + " -> " + a->out);
+                 job.BriefReport() + " -> " + a->out);
     return 0;
   };
 }

@@ -301,8 +301,10 @@ void RunImplicitfit(const SolidCloud& c, bool labelled, unsigned seed, const Fig
       implicitfit::PointCloud cloud;
       cloud.points = c.points;
       cloud.normals = c.normals_of_points;
+      implicitfit::ReconstructJobOptions options;
+      options.seed = seed;
       const implicitfit::CloudReconstruction job =
-          implicitfit::ReconstructCloud(cloud, c.name, c.normals, seed);
+          implicitfit::ReconstructCloud(cloud, c.name, c.normals, options);
       r = job.result;
       primitives = job.primitives.size();
     } else {

@@ -114,9 +114,12 @@ CloudDetection DetectPrepared(PointCloud cloud, CloudFileInfo info, Neighbourhoo
                               std::chrono::steady_clock::time_point start,
                               const DetectionOptions& options, bool freeform) {
   CloudDetection d;
+  d.options = options;
+  d.freeform = freeform;
   d.cloud = std::move(cloud);
   d.info = std::move(info);
   const size_t N = d.cloud.size();
+  d.points = N;
   d.scene.cloud = path;
   d.scene.points = static_cast<int>(N);
   d.report["cloud"] = path;
@@ -128,6 +131,7 @@ CloudDetection DetectPrepared(PointCloud cloud, CloudFileInfo info, Neighbourhoo
     d.scene.unassigned = static_cast<int>(N);
     d.report["primitives"] = 0;
     d.report["unassigned"] = N;
+    d.message = "no primitive found (too few points to estimate normals)";
     return d;
   }
   if (nb.indices.size() != N) nb = FindNeighbourhoods(d.cloud.points);
@@ -176,6 +180,10 @@ CloudDetection DetectPrepared(PointCloud cloud, CloudFileInfo info, Neighbourhoo
     if (!order.empty()) nb = FindNeighbourhoods(d.cloud.points);  // in the file's order now
     AddFreeformSurfaces(nb, options, &d);
   }
+  d.success = !d.scene.primitives.empty();
+  d.termination = d.success ? FitTermination::kConverged : FitTermination::kFailure;
+  d.message = d.success ? "detected" : "no primitive found";
+  d.seconds = r.seconds;
   return d;
 }
 
@@ -198,6 +206,28 @@ CloudDetection DetectCloud(PointCloud cloud, const std::string& path,
                            const std::string& normals_action, const DetectionOptions& options) {
   return DetectPrepared(std::move(cloud), CloudFileInfo(), Neighbourhoods(), {}, path,
                         normals_action, std::chrono::steady_clock::now(), options, false);
+}
+
+std::string CloudDetection::BriefReport() const {
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "points %d  primitives %zu  unassigned %d  threshold %.6g  %.3f s", scene.points,
+                scene.primitives.size(), scene.unassigned, result.threshold, result.seconds);
+  return line;
+}
+
+nlohmann::json CloudDetection::ToJson(const ReportHeader& header) const {
+  std::string kinds;
+  for (NodeType k : options.kinds)
+    kinds += (kinds.empty() ? "" : ",") + std::string(NodeTypeName(k));
+  const nlohmann::json settings = {{"kinds", kinds},
+                                   {"threshold", options.threshold},
+                                   {"normal_angle_deg", options.normal_angle_deg},
+                                   {"min_points", options.min_points},
+                                   {"seed", options.seed},
+                                   {"threads", options.num_threads},
+                                   {"freeform", freeform}};
+  return WithJobReportHeader(report, header, "detect", settings, scene.cloud);
 }
 
 void WriteDetection(const CloudDetection& d, const std::string& scene_path,

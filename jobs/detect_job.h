@@ -19,18 +19,30 @@
 #include "datasets/clouds/point_cloud.h"
 #include "datasets/io/scene_file.h"
 #include "datasets/io/truth_labels.h"
+#include "fit/common/fit_summary.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "jobs/report_header.h"
 
 namespace implicitfit {
 
-struct CloudDetection {
+// success: at least one primitive (termination CONVERGENCE), else FAILURE with message "no
+// primitive found" (and why, for a degenerate cloud); points: the cloud's; seconds: the
+// detection's (the report's "seconds"). Options: DetectionOptions (IsValid), and freeform.
+struct CloudDetection : FitSummary {
   PointCloud cloud;  // as read, with the normals the detection used
   CloudFileInfo info;
   DetectionResult result;
   Scene scene;
-  nlohmann::json report;
+  nlohmann::json report;    // the report above (without the header; ToJson adds it)
   bool degenerate = false;  // too few points for normals: nothing could be detected
+  DetectionOptions options;  // as given
+  bool freeform = false;
+  // "points N  primitives P  unassigned U  threshold t  s s" (one line).
+  std::string BriefReport() const;
+  // The report with `header` (its settings, when empty: kinds, threshold, normal_angle_deg,
+  // min_points, seed, threads, freeform).
+  nlohmann::json ToJson(const ReportHeader& header = {}) const;
 };
 
 // Throws InputError (naming the file) when the cloud cannot be read. options.progress, when

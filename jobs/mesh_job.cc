@@ -52,10 +52,7 @@ nlohmann::json MeshJobResult::ToJson(const ReportHeader& header) const {
                       {"box", {{"min", VectorJson(result.box_min)},
                                {"max", VectorJson(result.box_max)}}},
                       {"seconds", seconds}};
-  ReportHeader h = header;
-  if (h.job.empty()) h.job = "mesh";
-  if (h.settings.empty()) h.settings = options.Settings();
-  return WithReportHeader(std::move(j), h);
+  return WithJobReportHeader(std::move(j), header, "mesh", options.Settings());
 }
 
 MeshJobResult MeshModelJob(const Model& model, const MeshJobOptions& options) {

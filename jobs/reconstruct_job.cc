@@ -1,9 +1,11 @@
 #include "jobs/reconstruct_job.h"
 
-#include "jobs/detect_job.h"
+#include <cstdio>
+
 #include "datasets/io/io_error.h"
-#include "datasets/normals/oriented_cloud.h"
 #include "datasets/io/scene_file.h"
+#include "datasets/normals/oriented_cloud.h"
+#include "jobs/detect_job.h"
 
 namespace implicitfit {
 namespace {
@@ -78,36 +80,62 @@ nlohmann::json Report(const SolidReconstruction& r, const PointCloud& cloud,
 }
 
 // The solid of the primitives, and the report.
-void Finish(unsigned seed, const ProgressCallback& progress, CloudReconstruction* out) {
+void Finish(CloudReconstruction* out) {
   if (out->primitives.empty()) {
     out->result.message = "detect found no primitive";
   } else if (!out->cloud.has_normals()) {
     out->result.message = "no normals (" + out->normals + ")";
   } else {
     SolidReconstructionOptions options;
-    options.seed = seed;
-    options.progress = progress;
+    options.seed = out->options.seed;
+    options.progress = out->options.progress;
     out->result =
         ReconstructSolid(out->cloud.points, out->cloud.normals, out->primitives, options);
   }
   out->report = Report(out->result, out->cloud, out->normals, out->primitives);
+  out->success = out->result.success;
+  out->message = out->result.message;
+  out->termination = out->success ? FitTermination::kConverged : FitTermination::kFailure;
+  out->points = out->cloud.size();
+  out->seconds = out->result.seconds;
 }
 
 }  // namespace
 
+bool ReconstructJobOptions::IsValid(std::string* /*error*/) const { return true; }
+
+nlohmann::json ReconstructJobOptions::Settings() const { return {{"seed", seed}}; }
+
+std::string CloudReconstruction::BriefReport() const {
+  const SolidReconstruction& r = result;
+  std::string d = std::to_string(primitives.size()) + " primitives";
+  if (r.verification.points > 0)
+    d += ", " + std::to_string(r.verification.components.solids) + " solid piece(s), " +
+         std::to_string(r.verification.components.cavities) + " cavities";
+  char rms[48];
+  std::snprintf(rms, sizeof rms, ", rms %.4g", r.rms);
+  return d + rms;
+}
+
+nlohmann::json CloudReconstruction::ToJson(const ReportHeader& header) const {
+  return WithJobReportHeader(report, header, "reconstruct", options.Settings(), name);
+}
+
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
-                                         const std::string& scene_path, unsigned seed,
-                                         const ProgressCallback& progress) {
+                                         const ReconstructJobOptions& options) {
   std::string normals;
   PointCloud cloud;
   {
-    ProgressStage stage(progress, "normals", cloud_path);
+    ProgressStage stage(options.progress, "normals", cloud_path);
     cloud = ReadOrientedCloud(cloud_path, &normals);
     stage.End(std::to_string(cloud.size()) + " points, " + normals);
   }
-  if (scene_path.empty())
-    return ReconstructCloud(std::move(cloud), cloud_path, normals, seed, progress);
+  if (options.scene.empty())
+    return ReconstructCloud(std::move(cloud), cloud_path, normals, options);
+  const std::string& scene_path = options.scene;
   CloudReconstruction out;
+  out.options = options;
+  out.name = cloud_path;
   out.cloud = std::move(cloud);
   out.normals = normals;
   const Scene scene = ReadSceneFile(scene_path);
@@ -117,28 +145,30 @@ CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
   if (scene.primitives.empty()) throw InputError(scene_path + ": no primitives");
   if (scene.primitives.size() > 64) throw InputError(scene_path + ": more than 64 primitives");
   out.primitives = PrimitivesOfScene(scene);
-  Finish(seed, progress, &out);
+  Finish(&out);
   return out;
 }
 
 CloudReconstruction ReconstructCloud(PointCloud cloud, const std::string& name,
-                                     const std::string& normals, unsigned seed,
-                                     const ProgressCallback& progress) {
+                                     const std::string& normals,
+                                     const ReconstructJobOptions& options) {
   CloudReconstruction out;
+  out.options = options;
+  out.name = name;
   out.normals = normals;
   {
     // detect with its defaults and the same seed, on the cloud as given.
-    DetectionOptions options;
-    options.seed = seed;
-    ProgressStage stage(progress, "detect", std::to_string(cloud.size()) + " points");
-    CloudDetection detection = DetectCloud(std::move(cloud), name, normals, options);
+    DetectionOptions detect;
+    detect.seed = options.seed;
+    ProgressStage stage(options.progress, "detect", std::to_string(cloud.size()) + " points");
+    CloudDetection detection = DetectCloud(std::move(cloud), name, normals, detect);
     stage.End(std::to_string(detection.scene.primitives.size()) + " primitives");
     out.cloud = std::move(detection.cloud);
     out.primitives = PrimitivesOfScene(detection.scene);
     out.labels = detection.result.labels;
   }
   out.detected = true;
-  Finish(seed, progress, &out);
+  Finish(&out);
   return out;
 }
 

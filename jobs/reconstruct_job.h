@@ -12,39 +12,58 @@
 //    "verification": SolidVerification::ToJson() (fit/reconstruct/solid_verification.h; absent
 //    when the reconstruction stopped before a solid was built). "success" and "bounded" are true
 //    only when the verification passed / proved it.
-// Progress (stages "detect", "orientation", ..., "verification") goes to `progress`.
+// Progress (stages "detect", "orientation", ..., "verification") goes to options.progress.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "datasets/clouds/point_cloud.h"
+#include "fit/common/fit_summary.h"
 #include "fit/common/progress.h"
 #include "fit/reconstruct/solid_reconstruction.h"
+#include "jobs/report_header.h"
 
 namespace implicitfit {
 
-struct CloudReconstruction {
+struct ReconstructJobOptions {
+  std::string scene;  // ReconstructCloudFile: the scene file of the primitives; empty: detect
+  unsigned seed = 1;  // detect's and the reconstruction's
+  ProgressCallback progress;
+  // True: every seed is valid, and the scene file is checked when read (InputError).
+  bool IsValid(std::string* error) const;
+  // The "settings" of the report: seed (files left out, as in every report).
+  nlohmann::json Settings() const;
+};
+
+// success: the solid was built and verified (termination CONVERGENCE), else FAILURE with the
+// reason in message; points: the cloud's; seconds: the reconstruction's (the report's).
+struct CloudReconstruction : FitSummary {
   PointCloud cloud;       // as read (with the normals the reconstruction used)
+  std::string name;       // the cloud's path or name (the report's input)
   std::string normals;    // how the normals were obtained
   bool detected = false;  // primitives from detect (no scene given)
   std::vector<SolidPrimitive> primitives;
   std::vector<int> labels;  // per point, detect's (empty with a scene file)
   SolidReconstruction result;
-  nlohmann::json report;
+  nlohmann::json report;          // the report above (without the header; ToJson adds it)
+  ReconstructJobOptions options;  // as given
+  // "14 primitives, 1 solid piece(s), 0 cavities, rms 0.0123" (one line).
+  std::string BriefReport() const;
+  // The report with `header` (its settings: ReconstructJobOptions::Settings() when empty).
+  nlohmann::json ToJson(const ReportHeader& header = {}) const;
 };
 
 // Throws InputError naming the file when the cloud or the scene cannot be read or do not match.
 // A cloud without normals, or on which detect finds nothing, gives result.success false and
 // its reason in result.message (and the report).
 CloudReconstruction ReconstructCloudFile(const std::string& cloud_path,
-                                         const std::string& scene_path, unsigned seed,
-                                         const ProgressCallback& progress = {});
-// The same without a scene on a cloud already read (`name` for the report; normals oriented,
-// e.g. by datasets/normals/normal_estimation.h, and `normals` saying how): detect, then the
-// solid. The end-to-end path of a raw scan.
+                                         const ReconstructJobOptions& options = {});
+// The same without a scene (options.scene is not read) on a cloud already read (`name` for the
+// report; normals oriented, e.g. by datasets/normals/normal_estimation.h, and `normals` saying
+// how): detect, then the solid. The end-to-end path of a raw scan.
 CloudReconstruction ReconstructCloud(PointCloud cloud, const std::string& name,
-                                     const std::string& normals, unsigned seed,
-                                     const ProgressCallback& progress = {});
+                                     const std::string& normals,
+                                     const ReconstructJobOptions& options = {});
 
 }  // namespace implicitfit

@@ -46,4 +46,13 @@ nlohmann::ordered_json WithReportHeader(nlohmann::ordered_json report,
   return AddHeader(std::move(report), header);
 }
 
+nlohmann::json WithJobReportHeader(nlohmann::json report, ReportHeader header,
+                                   const std::string& job, const nlohmann::json& settings,
+                                   const std::string& input) {
+  if (header.job.empty()) header.job = job;
+  if (header.input.empty()) header.input = input;
+  if (header.settings.empty()) header.settings = settings;
+  return AddHeader(std::move(report), header);
+}
+
 }  // namespace implicitfit

@@ -33,5 +33,10 @@ nlohmann::json WithReportHeader(nlohmann::json report, const ReportHeader& heade
 // The same for a report whose key order is part of its contract (check --json): the header's
 // keys follow the report's own.
 nlohmann::ordered_json WithReportHeader(nlohmann::ordered_json report, const ReportHeader& header);
+// WithReportHeader for a job's ToJson: what `header` leaves empty (job, input, settings) is the
+// job's own.
+nlohmann::json WithJobReportHeader(nlohmann::json report, ReportHeader header,
+                                   const std::string& job, const nlohmann::json& settings,
+                                   const std::string& input = "");
 
 }  // namespace implicitfit

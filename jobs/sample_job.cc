@@ -82,10 +82,7 @@ nlohmann::json SampleJobResult::ToJson(const ReportHeader& header) const {
                       {"box", {{"min", VectorJson(sampled.box_min)},
                                {"max", VectorJson(sampled.box_max)}}},
                       {"seconds", seconds}};
-  ReportHeader h = header;
-  if (h.job.empty()) h.job = "sample";
-  if (h.settings.empty()) h.settings = options.Settings();
-  return WithReportHeader(std::move(j), h);
+  return WithJobReportHeader(std::move(j), header, "sample", options.Settings());
 }
 
 SampleJobResult SampleModelJob(const Model& model, const SampleJobOptions& options) {

@@ -1,5 +1,5 @@
-// implicitfit.read_cloud, estimate_normals, sample, check: clouds and certificates
-// (datasets/normals/oriented_cloud.h, datasets/normals/normal_estimation.h, datasets/generators/model_sampler.h,
+// implicitfit.read_cloud, estimate_normals, check: clouds and certificates
+// (datasets/normals/oriented_cloud.h, datasets/normals/normal_estimation.h,
 // model/certificates/convexity_report.h) with NumPy arrays in and out.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <string>
 
-#include "datasets/generators/model_sampler.h"
 #include "datasets/normals/normal_estimation.h"
 #include "datasets/normals/oriented_cloud.h"
 #include "model/certificates/convexity_report.h"
@@ -56,35 +55,6 @@ py::array_t<double> EstimateNormals(const py::handle& points, const py::handle& 
   return ArrayFromPoints(std::move(cloud.normals));
 }
 
-py::tuple Sample(const Model& model, long long count, double noise, double outliers, long long seed,
-                 const py::handle& view, double view_angle) {
-  SampleOptions options;
-  if (count < 1 || count > 1000000000LL) throw py::value_error("count: must be in [1, 1e9]");
-  if (!(noise >= 0.0) || !std::isfinite(noise)) throw py::value_error("noise: must be >= 0");
-  if (!(outliers >= 0.0 && outliers <= 0.99))
-    throw py::value_error("outliers: must be in [0, 0.99]");
-  if (seed < 0 || seed > 0xffffffffLL) throw py::value_error("seed: must be in [0, 2^32 - 1]");
-  if (!(view_angle >= 0.0 && view_angle <= 180.0))
-    throw py::value_error("view_angle: must be in [0, 180]");
-  options.count = static_cast<int>(count);
-  options.noise = noise;
-  options.outlier_fraction = outliers;
-  options.seed = static_cast<unsigned>(seed);
-  options.view_angle_deg = view_angle;
-  if (!view.is_none()) {
-    const std::vector<double> v = view.cast<std::vector<double>>();
-    if (v.size() != 3) throw py::value_error("view: expected 3 numbers");
-    options.view_dir = Eigen::Vector3d(v[0], v[1], v[2]);
-  }
-  SampledCloud sampled;
-  {
-    py::gil_scoped_release release;
-    sampled = SampleModel(model, options);
-  }
-  return py::make_tuple(ArrayFromPoints(std::move(sampled.cloud.points)),
-                        ArrayFromPoints(std::move(sampled.cloud.normals)));
-}
-
 }  // namespace
 
 void BindClouds(py::module_& m) {
@@ -97,12 +67,6 @@ void BindClouds(py::module_& m) {
         py::arg("min_k") = 8, py::arg("max_k") = 30,
         "PCA normals over density-adaptive neighbourhoods (min_k..max_k neighbours), oriented\n"
         "toward viewpoint when given, else by minimum-spanning-tree propagation: (N, 3) array.");
-  m.def("sample", &Sample, py::arg("model"), py::arg("count"), py::arg("noise") = 0.0,
-        py::arg("outliers") = 0.0, py::arg("seed") = 0, py::arg("view") = py::none(),
-        py::arg("view_angle") = 180.0,
-        "Oriented points on the model's zero set (as `implicitfit sample`): (points, normals).\n"
-        "noise: sigma along the normal; outliers: fraction replaced by uniform points;\n"
-        "view, view_angle: a partial view (normals within view_angle degrees of view).");
   m.def(
       "check", [](const Model& model) { return ToPython(ModelConvexityJson(model)); },
       py::arg("model"),

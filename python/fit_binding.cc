@@ -1,15 +1,16 @@
 // implicitfit.fit, fit_tree, fit_patch: the library's fitters (fit/*.h) on NumPy arrays, with
-// the same reports as `implicitfit fit --report` (fit/common/fit_report.h). The arrays are copied once
-// into the library's vectors, then the GIL is released for the whole fit (normal estimation
+// the same reports as `implicitfit fit --report` (fit/common/fit_report.h). The arrays are copied
+// once into the library's vectors, then the GIL is released for the whole fit (normal estimation
 // included), so Python threads can run fits in parallel.
 // Normals: given ones are used as they are (scaled to unit length if needed); None estimates and
-// orients them as the command line does for a file without normals (datasets/normals/normal_estimation.h),
-// so fit(*read_cloud(path)) fits exactly what `implicitfit fit path` fits; for `fit`, estimated
-// normals the neighbourhood fits do not trust (datasets/normals/normal_trust.h: a few probed points) are
-// dropped and the fit hypothesises from points alone, as on the command line.
+// orients them as the command line does for a file without normals
+// (datasets/normals/normal_estimation.h), so fit(*read_cloud(path)) fits exactly what
+// `implicitfit fit path` fits; for `fit`, estimated normals the neighbourhood fits do not trust
+// (datasets/normals/normal_trust.h: a few probed points) are dropped and the fit hypothesises
+// from points alone, as on the command line.
 // estimator= (fit/primitive/estimator.h) as `fit --estimator`.
-// `fit` returns a FitResult (model, success, inliers, report) that also unpacks as the former
-// (model, report) tuple; fit_tree and fit_patch return (model, report).
+// fit, fit_tree and fit_patch return a FitResult (model, success, inliers, report) that also
+// unpacks as the former (model, report) tuple.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -18,25 +19,26 @@
 #include <optional>
 #include <string>
 
-#include "datasets/normals/normal_estimation.h"
 #include "datasets/normals/neighbourhoods.h"
+#include "datasets/normals/normal_estimation.h"
 #include "datasets/normals/normal_trust.h"
-#include "fit/detect/checked_fit.h"
-#include "fit/common/fit_report.h"
 #include "fit/bernstein/patch_fitter.h"
-#include "fit/primitive/primitive_fitter.h"
+#include "fit/common/fit_report.h"
+#include "fit/detect/checked_fit.h"
 #include "fit/metrology/primitive_tangent.h"
+#include "fit/primitive/primitive_fitter.h"
 #include "fit/tree/tree_fitter.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
 #include "python/input_cloud.h"
 #include "python/json_to_python.h"
 #include "python/options.h"
+#include "python/pair_result.h"
 
 namespace implicitfit::python {
 namespace {
 
-// What `fit` returns: the model (None when the fit failed), its inliers (indices into the
+// What the fits return: the model (None when the fit failed), its inliers (indices into the
 // points, ascending) and the report. Iterating gives (model, report), so `model, report =
 // fit(...)` and `fit(...)[0]` work as when `fit` returned that tuple.
 struct FitResult {
@@ -102,10 +104,21 @@ PatchFitOutput RunPatchFit(const py::handle& points, const py::handle& normals, 
   return out;
 }
 
-py::tuple PatchFit(const py::handle& points, const py::handle& normals, int degree, bool convex,
+// A patch is a least-squares fit of every point: all of them are its inliers.
+FitResult PatchFitResultOf(const PatchFitOutput& out) {
+  FitResult fit;
+  fit.model = out.model;
+  fit.success = out.result.success;
+  std::vector<int> all(out.result.success ? out.points : 0);
+  std::iota(all.begin(), all.end(), 0);
+  fit.inliers = ArrayFromIndices(all);
+  fit.report = out.report;
+  return fit;
+}
+
+FitResult PatchFit(const py::handle& points, const py::handle& normals, int degree, bool convex,
                    const py::handle& tetrahedron) {
-  const PatchFitOutput out = RunPatchFit(points, normals, degree, convex, tetrahedron);
-  return py::make_tuple(out.model, out.report);
+  return PatchFitResultOf(RunPatchFit(points, normals, degree, convex, tetrahedron));
 }
 
 // As EstimateNormalsIfMissing, then the command line's trust rule for primitive fits
@@ -129,19 +142,9 @@ FitResult Fit(const py::handle& points, const py::handle& normals, const std::st
   if ((kind == "quadric-patch" || kind == "cubic-patch") && estimator != "robust")
     throw py::value_error("estimator " + estimator +
                           ": applies to plane, sphere, cylinder, cone and torus fits");
-  if (kind == "quadric-patch" || kind == "cubic-patch") {
-    // A patch is a least-squares fit of every point: all of them are its inliers.
-    const PatchFitOutput out =
-        RunPatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none());
-    FitResult fit;
-    fit.model = out.model;
-    fit.success = out.result.success;
-    std::vector<int> all(out.result.success ? out.points : 0);
-    std::iota(all.begin(), all.end(), 0);
-    fit.inliers = ArrayFromIndices(all);
-    fit.report = out.report;
-    return fit;
-  }
+  if (kind == "quadric-patch" || kind == "cubic-patch")
+    return PatchFitResultOf(
+        RunPatchFit(points, normals, kind == "quadric-patch" ? 2 : 3, false, py::none()));
   PrimitiveFitOptions options;
   if (!FittableKindFromName(kind, &options.kind))
     throw py::value_error("kind " + kind + ": unknown (" + FittableKindNames() +
@@ -210,7 +213,7 @@ FitResult Fit(const py::handle& points, const py::handle& normals, const std::st
   return fit;
 }
 
-py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Model& init) {
+FitResult TreeFit(const py::handle& points, const py::handle& normals, const Model& init) {
   InputCloud in = ReadInputCloud(points, normals, init.parameters().size());
   TreeFitResult result;
   {
@@ -218,29 +221,30 @@ py::tuple TreeFit(const py::handle& points, const py::handle& normals, const Mod
     EstimateNormalsIfMissing(&in);
     result = FitModelTree(init, in.cloud.points, in.cloud.normals, TreeFitOptions{});
   }
-  py::object model = result.success ? py::cast(result.model) : py::none();
-  return py::make_tuple(model, ToPython(TreeFitReport(result, in.cloud.size(), in.action)));
+  FitResult fit;
+  fit.success = result.success;
+  if (result.success) fit.model = py::cast(result.model);
+  fit.inliers = ArrayFromIndices(result.success ? result.inlier_points : std::vector<int>());
+  fit.report = ToPython(TreeFitReport(result, in.cloud.size(), in.action));
+  return fit;
 }
 
 }  // namespace
 
 void BindFits(py::module_& m) {
-  py::class_<FitResult>(m, "FitResult",
-                        "The result of fit(): model (Model or None), success, inliers (int64\n"
-                        "indices of the points the final fit used, ascending), report (dict).\n"
-                        "Unpacks as (model, report): `model, report = fit(...)`.")
-      .def_readonly("model", &FitResult::model, "The fitted Model, None when the fit failed")
+  py::class_<FitResult> fit_result(
+      m, "FitResult",
+      "The result of fit(), fit_tree() and fit_patch(): model (Model or None), success, inliers\n"
+      "(int64 indices of the points the final fit used, ascending), report (dict). Unpacks as\n"
+      "(model, report): `model, report = fit(...)`.");
+  fit_result.def_readonly("model", &FitResult::model, "The fitted Model, None when the fit failed")
       .def_readonly("success", &FitResult::success)
       .def_readonly("inliers", &FitResult::inliers,
-                    "(K,) int64: the points within the final inlier band (|f| and normals)")
+                    "(K,) int64: the points within the final inlier band (a primitive: |f| and\n"
+                    "normals; a tree: |f / |grad f|| < 3 sigma; a patch: every point)")
       .def_readonly("report", &FitResult::report, "The `implicitfit fit --report` JSON as a dict")
-      .def("__iter__", [](const FitResult& r) { return py::iter(r.AsTuple()); })
-      .def("__len__", [](const FitResult&) { return 2; })
-      .def("__getitem__", [](const FitResult& r, py::ssize_t i) -> py::object {
-        if (i < -2 || i > 1) throw py::index_error("FitResult unpacks as (model, report)");
-        return (i == 0 || i == -2) ? r.model : r.report;
-      })
       .def("__repr__", &FitResult::Repr);
+  UnpacksAsPair(fit_result, "FitResult unpacks as (model, report)");
   m.def(
       "fit", &Fit, py::arg("points"), py::arg("normals") = py::none(), py::arg("kind") = "sphere",
       py::arg("seed") = 0, py::arg("threshold") = py::none(), py::arg("fix") = py::none(),
@@ -259,13 +263,14 @@ void BindFits(py::module_& m) {
       "is None when the fit fails (report[\"message\"] says why).");
   m.def("fit_tree", &TreeFit, py::arg("points"), py::arg("normals"), py::arg("init"),
         "Fits every free parameter of a model tree (primitive parameters, delta and epsilon of\n"
-        "blends, control points), as `implicitfit fit CLOUD --init MODEL.json`. Returns (Model, "
-        "report).");
+        "blends, control points), as `implicitfit fit CLOUD --init MODEL.json`. Returns a\n"
+        "FitResult (model, success, inliers: within 3 sigma, report; unpacks as (model, report)).");
   m.def("fit_patch", &PatchFit, py::arg("points"), py::arg("normals"), py::arg("degree") = 2,
         py::arg("convex") = false, py::arg("tetrahedron") = py::none(),
         "Fits a Bernstein patch of degree 2..4 (convex=True: enforced and certified convex), as\n"
         "`implicitfit fit CLOUD --model quadric-patch`. tetrahedron: (4, 3) vertices (None: one\n"
-        "enclosing the cloud). Returns (Model, report).");
+        "enclosing the cloud). Returns a FitResult (model, success, inliers: every point,\n"
+        "report; unpacks as (model, report)).");
 }
 
 }  // namespace implicitfit::python

@@ -36,12 +36,25 @@ class Model:
         """The root node's type: "sphere", "union", "bernstein_patch", ..."""
 
 class FitResult:
-    """The result of fit(); unpacks as (model, report)."""
+    """The result of fit(), fit_tree() and fit_patch(); unpacks as (model, report)."""
 
     model: Optional[Model]  # None when the fit failed
     success: bool
     inliers: _Indices  # (K,) the points within the final inlier band, ascending
     report: _Report  # the `implicitfit fit --report` JSON
+    def __iter__(self) -> Iterator[Any]: ...
+    def __len__(self) -> int: ...
+    def __getitem__(self, index: int) -> Any: ...
+
+class SampleResult:
+    """The result of sample(); unpacks as (points, normals)."""
+
+    points: _Array  # (N, 3)
+    normals: _Array  # (N, 3) unit, grad f at the drawn point
+    outliers: npt.NDArray[np.bool_]  # (N,) True for the uniform outliers
+    labels: _Indices  # (N,) the leaf drawn on (node order), -1 outliers and blends
+    truth_kinds: Optional[List[str]]  # one kind per leaf, None unless detect knows them all
+    report: _Report  # the sample job's report
     def __iter__(self) -> Iterator[Any]: ...
     def __len__(self) -> int: ...
     def __getitem__(self, index: int) -> Any: ...
@@ -112,9 +125,7 @@ def mesh(
 ) -> Tuple[_Array, _Indices]:
     """(V, F) of the zero set, as `implicitfit mesh MODEL.json`: (n, 3) float64, (m, 3) int64."""
 
-def fit_tree(
-    points: _Points, normals: Optional[_Points], init: Model
-) -> Tuple[Optional[Model], _Report]:
+def fit_tree(points: _Points, normals: Optional[_Points], init: Model) -> FitResult:
     """Every free parameter of a model tree, as `implicitfit fit CLOUD --init MODEL.json`."""
 
 def fit_patch(
@@ -123,7 +134,7 @@ def fit_patch(
     degree: int = 2,
     convex: bool = False,
     tetrahedron: Optional[_Points] = None,
-) -> Tuple[Optional[Model], _Report]:
+) -> FitResult:
     """A Bernstein patch of degree 2..4, as `implicitfit fit CLOUD --model quadric-patch`."""
 
 def read_cloud(path: _Path, estimate: bool = False) -> Tuple[_Array, Optional[_Array]]:
@@ -145,8 +156,8 @@ def sample(
     seed: int = 0,
     view: Optional[Sequence[float]] = None,
     view_angle: float = 180.0,
-) -> Tuple[_Array, _Array]:
-    """Oriented points on the zero set, as `implicitfit sample`: (points, normals)."""
+) -> SampleResult:
+    """Oriented points on the zero set, as `implicitfit sample`; unpacks as (points, normals)."""
 
 def check(model: Model) -> _Report:
     """Convexity certificates, as one file's entry of `implicitfit check --json`."""

@@ -34,6 +34,7 @@ PYBIND11_MODULE(implicitfit, m) {
   python::BindModel(m);
   python::BindFits(m);
   python::BindClouds(m);
+  python::BindSample(m);
   python::BindDetect(m);
   python::BindReconstruct(m);
   python::BindMesh(m);

@@ -37,13 +37,14 @@ struct PyReconstructResult {
 
 PyReconstructResult Reconstruct(const py::handle& points, const py::handle& normals,
                                 long long seed, bool keep_unverified) {
-  const unsigned s = SeedFrom(seed);
+  ReconstructJobOptions options;
+  options.seed = SeedFrom(seed);
   InputCloud in = ReadInputCloud(points, normals, 3);
   CloudReconstruction job;
   {
     py::gil_scoped_release release;
     EstimateNormalsIfMissing(&in);
-    job = ReconstructCloud(std::move(in.cloud), "<array>", in.action, s);
+    job = ReconstructCloud(std::move(in.cloud), "<array>", in.action, options);
   }
   const SolidReconstruction& r = job.result;
   const bool built = r.verification.points > 0;  // a solid was built (verified or not)

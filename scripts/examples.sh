@@ -3,7 +3,7 @@
 # /opt/implicitfit, and fails if any file lands outside <tmp>/root/opt/implicitfit (an absolute
 # install destination, e.g. a Python site-packages); then builds examples/ as a separate
 # consumer project that declares only LANGUAGES CXX against that prefix (find_package(implicitfit),
-# implicitfit::implicitfit) and runs the three examples. .ci/run calls it; it fails if any step
+# implicitfit::implicitfit) and runs the four examples. .ci/run calls it; it fails if any step
 # fails. IMPLICITFIT_SANITIZE=ON: the sanitized build (./build-asan), whose package passes the
 # sanitizer link flags on.
 set -euo pipefail
@@ -35,4 +35,5 @@ cmake --build "$work/examples-build" -j "$(nproc)"
 "$work/examples-build/fit_sphere" datasets/data/cgal_sphere_single.xyz
 "$work/examples-build/convex_patch"
 "$work/examples-build/smooth_csg" "$work/part.json"
-echo "examples: all three built against the installed package (LANGUAGES CXX) and ran" >&2
+"$work/examples-build/mesh_and_sample" "$work/sphere.ply"
+echo "examples: all four built against the installed package (LANGUAGES CXX) and ran" >&2

@@ -38,7 +38,9 @@ BatchOutcome ProcessSolidInput(const BatchInput& in, const BatchOptions& o) {
   job.results = {model_path};
   job.read_complete = [&](BatchOutcome* out) { return ReadCompleteSolid(in, o, out); };
   job.run = [&](BatchOutcome* out) {
-    const CloudReconstruction r = ReconstructCloudFile(in.path, "", o.detect.seed);
+    ReconstructJobOptions options;
+    options.seed = o.detect.seed;
+    const CloudReconstruction r = ReconstructCloudFile(in.path, options);
     TakeFigures(r.report, out);
     if (r.result.success) {
       WriteModelFile(r.result.model, model_path);

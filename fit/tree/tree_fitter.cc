@@ -129,6 +129,7 @@ TreeFitResult FitModelTree(const Model& initial, const std::vector<Eigen::Vector
   for (size_t i = 0; i < n_points; ++i) {
     if (std::abs(d[i]) > 3.0 * result.sigma) continue;  // sigma 0 (exact data): |d| = 0 counts
     ++result.inliers;
+    result.inlier_points.push_back(static_cast<int>(i));
     ss += d[i] * d[i];
     if (has_normals) {
       const Eigen::Vector3d g = result.model.Gradient(points[i]).normalized();

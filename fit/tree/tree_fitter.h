@@ -42,6 +42,7 @@ struct TreeFitResult : FitSummary {
   double rms = 0.0;    // RMS geometric distance of the inliers (|r_0| < 3 sigma)
   double sigma = 0.0;  // robust noise scale
   int inliers = 0;
+  std::vector<int> inlier_points;  // their indices into the points, ascending
   double mean_normal_angle_deg = -1.0;
   int iterations = 0;
   // "points N  inliers M  rms ...  s" (one line).

@@ -64,7 +64,9 @@ PointsOnlyOutcome ReconstructPointsOnly(const GeneratedSolid& solid, int points,
   PointCloud cloud = SampleModel(solid.truth, so).cloud;
   cloud.normals.clear();  // points only
   const NormalResult normals = EnsureOrientedNormals(&cloud);
-  const CloudReconstruction job = ReconstructCloud(cloud, solid.name, normals.action, seed);
+  ReconstructJobOptions options;
+  options.seed = seed;
+  const CloudReconstruction job = ReconstructCloud(cloud, solid.name, normals.action, options);
   const SolidReconstruction& r = job.result;
   std::printf("  %s: %zu primitives, expression %s\n  %s, %.1f s (tree fit %.1f s, %d blends)\n",
               solid.name.c_str(), job.primitives.size(), r.expression.c_str(), r.message.c_str(),

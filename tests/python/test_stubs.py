@@ -109,7 +109,7 @@ def test_every_model_member_has_the_module_signature():
 def test_every_result_class_has_the_module_attributes():
     classes = [n for n in stub_tree().body if isinstance(n, ast.ClassDef) and n.name != "Model"]
     assert {c.name for c in classes} == {"FitResult", "DetectResult", "DetectedPrimitive",
-                                         "ReconstructResult"}
+                                         "ReconstructResult", "SampleResult"}
     for cls in classes:
         stubbed = {n.target.id for n in cls.body if isinstance(n, ast.AnnAssign)}
         bound = {n for n in dir(getattr(implicitfit, cls.name)) if not n.startswith("_")}
