@@ -58,7 +58,8 @@ struct Row {
   std::string name;
   size_t points = 0;
   int primitives = 0, remainder = 0, region_points = 0, surfaces = 0, assigned = 0;
-  int false_assigned = 0;  // assigned with |residual| > 3 detector sigma
+  int false_assigned = 0;  // assigned with |residual| > 3 sigma_plane of its patch
+  double worst_ratio = 0;  // the largest patch RMS / sigma_plane over the patch's points
   double rms = 0, worst_rms = 0, sigma_detector = 0, sigma_plane_free = 0, sigma_plane_all = 0;
   double seconds_detect = 0, seconds_freeform = 0;
 };
@@ -74,8 +75,10 @@ Row RunScan(const std::string& name, const std::string& path) {
   row.region_points = ff.at("region_points");
   row.seconds_freeform = ff.at("seconds");
   row.sigma_detector = d.result.noise;
-  std::vector<char> free(d.cloud.size(), 0);
-  double sum2 = 0;
+  const int k = 12;
+  const std::vector<double> r = LocalPlaneResiduals(d.cloud.points, k);
+  const double leverage = (k + 1.0) / (k + 1.0 - 3.0);
+  double sum2 = 0, s2 = 0;
   for (size_t s = 0; s < d.scene.primitives.size(); ++s) {
     const ScenePrimitive& p = d.scene.primitives[s];
     if (p.model.nodes()[0].type != NodeType::kBSplineSurface) {
@@ -84,29 +87,31 @@ Row RunScan(const std::string& name, const std::string& path) {
     }
     ++row.surfaces;
     row.worst_rms = std::max(row.worst_rms, p.rms_distance);
+    std::vector<int> members;
+    double patch_plane2 = 0;
     for (size_t i = 0; i < d.cloud.size(); ++i)
       if (d.result.labels[i] == static_cast<int>(s)) {
-        free[i] = 1;
-        ++row.assigned;
+        members.push_back(static_cast<int>(i));
         sum2 += d.result.residuals[i] * d.result.residuals[i];
-        row.false_assigned += std::abs(d.result.residuals[i]) > 3.0 * d.result.noise;
+        patch_plane2 += r[i] * r[i];
       }
+    if (members.empty()) continue;
+    row.assigned += static_cast<int>(members.size());
+    s2 += patch_plane2;
+    // The patch's own noise: the local-plane figure over its points.
+    const double sigma_patch = std::sqrt(patch_plane2 / members.size() * leverage);
+    if (sigma_patch > 0) row.worst_ratio = std::max(row.worst_ratio, p.rms_distance / sigma_patch);
+    for (int i : members) row.false_assigned += std::abs(d.result.residuals[i]) > 3.0 * sigma_patch;
   }
   row.remainder = d.scene.unassigned + row.assigned;
   row.rms = row.assigned ? std::sqrt(sum2 / row.assigned) : 0.0;
-  std::fprintf(stderr, "%s: detection %.1f s; assigned with residual > 3 sigma: %d; lost points "
-               "by reason: %s; rejections: %s\n", name.c_str(), row.seconds_detect,
-               row.false_assigned, ff.at("lost_points").dump().c_str(),
-               ff.at("rejected").dump().c_str());
-  const int k = 12;
-  const std::vector<double> r = LocalPlaneResiduals(d.cloud.points, k);
-  const double leverage = (k + 1.0) / (k + 1.0 - 3.0);
-  double s2 = 0;
+  std::fprintf(stderr,
+               "%s: detection %.1f s; assigned with |residual| > 3 sigma_plane of its "
+               "patch: %d; lost points by reason: %s; rejections: %s\n",
+               name.c_str(), row.seconds_detect, row.false_assigned,
+               ff.at("lost_points").dump().c_str(), ff.at("rejected").dump().c_str());
   std::vector<double> all2;
-  for (size_t i = 0; i < r.size(); ++i) {
-    all2.push_back(r[i] * r[i]);
-    if (free[i]) s2 += r[i] * r[i];
-  }
+  for (double x : r) all2.push_back(x * x);
   row.sigma_plane_free = row.assigned ? std::sqrt(s2 / row.assigned * leverage) : 0.0;
   std::nth_element(all2.begin(), all2.begin() + all2.size() / 2, all2.end());
   row.sigma_plane_all = std::sqrt(all2[all2.size() / 2] / 0.4549 * leverage);
@@ -123,11 +128,13 @@ int main(int argc, char** argv) {
   const std::vector<std::pair<std::string, std::string>> scans = {
       {"table", data + "/pcl/pcl_table_scene_mug_stereo_textured_finite.ply"},
       {"bunny", data + "/stanford/stanford_bunny_bun000_rangescan.ply"}};
-  std::printf("| scan | points | primitives | left unassigned | in smooth regions | B-spline "
-              "surfaces | points assigned | share of smooth regions | pooled RMS | worst "
-              "patch RMS | sigma_plane (freeform pts) | RMS / sigma_plane | sigma_plane (all, "
-              "median) | detector sigma | detect + freeform s | freeform s |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| scan | points | primitives | left unassigned | in smooth regions | B-spline "
+      "surfaces | points assigned | share of smooth regions | share of all left unassigned "
+      "| pooled RMS | worst patch RMS | sigma_plane (freeform pts) | RMS / sigma_plane | "
+      "worst patch RMS / its sigma_plane | sigma_plane (all, median) | detector sigma | "
+      "detect + freeform s | freeform s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& [name, path] : scans) {
     if (!only.empty() && only != name) continue;
     struct stat st;
@@ -136,13 +143,14 @@ int main(int argc, char** argv) {
       continue;
     }
     const Row r = RunScan(name, path);
-    std::printf("| %s | %zu | %d | %d | %d | %d | %d | %.1f%% | %.3g | %.3g | %.3g | %.2f | %.3g | "
-                "%.3g | %.1f | %.1f |\n",
-                r.name.c_str(), r.points, r.primitives, r.remainder, r.region_points, r.surfaces,
-                r.assigned, r.region_points ? 100.0 * r.assigned / r.region_points : 0.0, r.rms,
-                r.worst_rms, r.sigma_plane_free,
-                r.sigma_plane_free > 0 ? r.rms / r.sigma_plane_free : 0.0, r.sigma_plane_all,
-                r.sigma_detector, r.seconds_detect, r.seconds_freeform);
+    std::printf(
+        "| %s | %zu | %d | %d | %d | %d | %d | %.1f%% | %.1f%% | %.3g | %.3g | %.3g | %.2f "
+        "| %.2f | %.3g | %.3g | %.1f | %.1f |\n",
+        r.name.c_str(), r.points, r.primitives, r.remainder, r.region_points, r.surfaces,
+        r.assigned, r.region_points ? 100.0 * r.assigned / r.region_points : 0.0,
+        r.remainder ? 100.0 * r.assigned / r.remainder : 0.0, r.rms, r.worst_rms,
+        r.sigma_plane_free, r.sigma_plane_free > 0 ? r.rms / r.sigma_plane_free : 0.0,
+        r.worst_ratio, r.sigma_plane_all, r.sigma_detector, r.seconds_detect, r.seconds_freeform);
     std::fflush(stdout);
   }
   return 0;

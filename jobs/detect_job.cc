@@ -73,6 +73,7 @@ void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& optio
   fo.noise = r.noise > 0 ? r.noise : 0.1 * r.threshold;
   fo.threshold = r.threshold;
   fo.normal_angle_deg = r.normal_angle_deg;
+  fo.spacing = r.spacing;
   fo.min_points = std::max(r.min_points, 1);
   fo.num_threads = options.num_threads;
   const FreeformResult f =
@@ -92,16 +93,23 @@ void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& optio
   d->scene.unassigned -= assigned;
   d->report["unassigned"] = d->scene.unassigned;
   d->report["primitives"] = d->scene.primitives.size();
-  d->report["freeform"] = {{"surfaces", f.surfaces.size()}, {"points", assigned},
-                           {"regions", f.regions},          {"region_points", f.region_points},
-                           {"fits", f.fits},                {"splits", f.splits},
+  d->report["freeform"] = {{"surfaces", f.surfaces.size()},
+                           {"points", assigned},
+                           {"regions", f.regions},
+                           {"region_points", f.region_points},
+                           {"fits", f.fits},
+                           {"splits", f.splits},
+                           {"grown", f.grown},
                            {"seconds", f.seconds},
-                           {"rejected", {{"folded", f.folded}, {"no_grid", f.no_grid},
-                                         {"small_support", f.small_support},
-                                         {"rms_over_2_sigma", f.rms_over},
-                                         {"small_parts", f.small_parts},
-                                         {"small_part_points", f.small_part_points},
-                                         {"depth_limit", f.depth_limit}}},
+                           {"rejected",
+                            {{"folded", f.folded},
+                             {"no_grid", f.no_grid},
+                             {"small_support", f.small_support},
+                             {"rms_over_2_sigma", f.rms_over},
+                             {"small_parts", f.small_parts},
+                             {"small_part_points", f.small_part_points},
+                             {"depth_limit", f.depth_limit},
+                             {"volume", f.volume}}},
                            {"lost_points", f.lost_points}};
   if (!f.surfaces.empty()) d->report["kinds"]["bspline_surface"] = f.surfaces.size();
 }

@@ -10,6 +10,7 @@
 
 #include "fit/common/thread_count.h"
 #include "fit/splines/bspline_surface_fitter.h"
+#include "fit/splines/local_scales.h"
 #include "fit/splines/parameter_frame.h"
 
 namespace implicitfit {
@@ -69,24 +70,32 @@ class FreeformStage {
  public:
   FreeformStage(const std::vector<Vec>& points, const std::vector<Vec>& normals,
                 const NeighbourGraph& neighbours, const FreeformOptions& o)
-      : points_(points), normals_(normals), neighbours_(neighbours), o_(o),
-        member_(points.size(), -1) {
-    cos_theta_ = std::cos(o.normal_angle_deg * M_PI / 180.0);
-    s_ = std::clamp(o.noise, o.threshold / 10.0, o.threshold / 3.0);
+      : points_(points),
+        normals_(normals),
+        neighbours_(neighbours),
+        o_(o),
+        member_(points.size(), -1),
+        figures_(ComputeLocalScaleFigures(points, normals, neighbours, o.normal_angle_deg)) {
     threads_ = ThreadCountOrDefault(o.num_threads);
   }
 
   // Steps 2-4 of the header on one region.
-  void Process(const std::vector<int>& region, int depth) {
+  void Process(const std::vector<int>& region, int depth, const char* origin = "small_region") {
     if (static_cast<int>(region.size()) < o_.min_points) {
       ++result_.small_parts;
       result_.small_part_points += static_cast<int>(region.size());
-      result_.lost_points[depth == 0 ? "small_region" : "small_part"] +=
-          static_cast<int>(region.size());
+      result_.lost_points[origin] += static_cast<int>(region.size());
       return;
     }
     std::vector<Vec> p, n;
     Gather(region, &p, &n);
+    const PartScales scales =
+        ScalesOfPart(figures_, region, {o_.noise, o_.threshold, o_.normal_angle_deg, o_.spacing});
+    if (scales.volume) {  // points filling a volume, not sampling a surface: no patch
+      ++result_.volume;
+      result_.lost_points["volume"] += static_cast<int>(region.size());
+      return;
+    }
     ParameterFrame frame;
     try {
       frame = FitParameterFrame(p, n);
@@ -96,80 +105,127 @@ class FreeformStage {
     }
     int folded = 0;
     for (const Vec& x : n) folded += x.dot(frame.normal) < std::cos(80.0 * M_PI / 180.0);
-    if (folded > 0.02 * n.size()) {
-      ++result_.folded;
-      Split(region, p, depth, "folded");
-      return;
-    }
-    const Candidate best = BestGrid(p, n, frame);
+    const bool fold = folded > 0.02 * n.size();
+    if (fold) ++result_.folded;
+    const Candidate best = BestGrid(p, n, frame, scales);
     if (!best.ok) {
       ++result_.no_grid;
       Split(region, p, depth, "no_grid");
       return;
     }
     // Support, refit on it, support again (step 4).
-    std::vector<int> support = Support(region, best.fit.ToModel());
+    std::vector<int> support = Support(region, best.fit.ToModel(), scales);
     if (static_cast<int>(support.size()) < o_.min_points) {
       ++result_.small_support;
       Split(region, p, depth, "small_support");
       return;
     }
-    SurfaceFitOptions fo = FitOptions(best.fit.count_u, best.fit.count_v, true);
-    std::vector<Vec> sp, sn;
-    Gather(support, &sp, &sn);
-    const SurfaceFitResult refit = FitBSplineSurface(sp, sn, fo);
-    ++result_.fits;
-    const SurfaceFitResult& final_fit = refit.success ? refit : best.fit;
-    const Model model = final_fit.ToModel();
-    support = Support(region, model);
-    double sum = 0.0;
-    int agree = 0;
-    std::vector<double> r(support.size());
-    for (size_t k = 0; k < support.size(); ++k) {
-      double f;
-      const Vec g = model.Gradient(points_[support[k]], &f);
-      r[k] = f;
-      sum += f * f;
-      agree += g.dot(normals_[support[k]]) > 0;
-    }
-    const double rms = support.empty() ? INFINITY : std::sqrt(sum / support.size());
-    if (static_cast<int>(support.size()) < o_.min_points || rms > 2.0 * o_.noise) {
-      const bool over = rms > 2.0 * o_.noise;
+    const SurfaceFitOptions fo = FitOptions(best.fit.count_u, best.fit.count_v, true);
+    const SurfaceFitResult refit = Refit(support, fo);
+    SurfaceFitResult final_fit = refit.success ? refit : best.fit;
+    Assessment a = Assess(region, final_fit.ToModel(), scales);
+    const double bound = 2.0 * scales.likelihood_sigma;
+    if (static_cast<int>(a.support.size()) < o_.min_points || a.rms > bound) {
+      const bool over = a.rms > bound;
       ++(over ? result_.rms_over : result_.small_support);
       Split(region, p, depth, over ? "rms_over" : "small_support");
       return;
     }
+    // Fringes (step 5): the pieces under min_points that the support leaves of the region lie
+    // mostly just beyond the patch's rectangle (each refit's domain is its support's); one refit
+    // on the support and them, kept when its support is larger and within the RMS bound.
+    std::vector<int> grown = a.support;
+    for (const std::vector<int>& part : SmoothParts(Outside(region, a.support)))
+      if (static_cast<int>(part.size()) < o_.min_points)
+        grown.insert(grown.end(), part.begin(), part.end());
+    if (grown.size() > a.support.size()) {
+      const SurfaceFitResult wider = Refit(grown, fo);
+      if (wider.success) {
+        Assessment b = Assess(region, wider.ToModel(), scales);
+        if (b.support.size() > a.support.size() && b.rms <= bound) {
+          ++result_.grown;
+          a = std::move(b);
+          final_fit = wider;
+        }
+      }
+    }
     FreeformSurface surface;
-    surface.model = model;
-    surface.points = support;
+    surface.model = final_fit.ToModel();
+    surface.points = a.support;
     std::sort(surface.points.begin(), surface.points.end());
-    surface.rms_distance = rms;
+    surface.rms_distance = a.rms;
     surface.count_u = final_fit.count_u;
     surface.count_v = final_fit.count_v;
-    surface.normal_side = agree >= 0.9 * support.size() ? "outward"
-                          : agree <= 0.1 * support.size() ? "inward" : "unknown";
-    for (size_t k = 0; k < support.size(); ++k) assigned_[support[k]] = r[k];
+    const double m = static_cast<double>(a.support.size());
+    surface.normal_side = a.agree >= 0.9 * m   ? "outward"
+                          : a.agree <= 0.1 * m ? "inward"
+                                               : "unknown";
+    for (size_t k = 0; k < a.support.size(); ++k) assigned_[a.support[k]] = a.residuals[k];
     result_.surfaces.push_back(std::move(surface));
     // What the patch left of the region may hold another surface.
     std::vector<int> rest;
     for (int i : region)
       if (!assigned_.count(i)) rest.push_back(i);
     if (depth < o_.max_depth)
-      for (const std::vector<int>& part : SmoothParts(rest)) Process(part, depth + 1);
+      for (const std::vector<int>& part : SmoothParts(rest))
+        Process(part, depth + 1, "beside_patch");
     else
       result_.lost_points["rest_at_depth_limit"] += static_cast<int>(rest.size());
   }
 
   std::vector<std::vector<int>> SmoothParts(const std::vector<int>& subset) {
+    const std::vector<double>& band = figures_.cos_band;
     return ConnectedParts(
         subset, neighbours_,
-        [&](int i, int j) { return normals_[i].dot(normals_[j]) >= cos_theta_; }, &member_);
+        [&](int i, int j) { return normals_[i].dot(normals_[j]) >= std::min(band[i], band[j]); },
+        &member_);
   }
 
   FreeformResult& result() { return result_; }
   const std::map<int, double>& assigned() const { return assigned_; }
 
  private:
+  // A patch on a part of the region: its support, each support point's signed distance, the
+  // RMS of those and how many of the point normals agree with S_u x S_v.
+  struct Assessment {
+    std::vector<int> support;
+    std::vector<double> residuals;
+    double rms = INFINITY;
+    int agree = 0;
+  };
+
+  Assessment Assess(const std::vector<int>& region, const Model& model, const PartScales& scales) {
+    Assessment a;
+    a.support = Support(region, model, scales);
+    a.residuals.resize(a.support.size());
+    double sum = 0.0;
+    for (size_t k = 0; k < a.support.size(); ++k) {
+      double f;
+      const Vec g = model.Gradient(points_[a.support[k]], &f);
+      a.residuals[k] = f;
+      sum += f * f;
+      a.agree += g.dot(normals_[a.support[k]]) > 0;
+    }
+    if (!a.support.empty()) a.rms = std::sqrt(sum / a.support.size());
+    return a;
+  }
+
+  SurfaceFitResult Refit(const std::vector<int>& ids, const SurfaceFitOptions& fo) {
+    std::vector<Vec> p, n;
+    Gather(ids, &p, &n);
+    ++result_.fits;
+    return FitBSplineSurface(p, n, fo);
+  }
+
+  // The region's points outside `inside` (both ascending or not: a lookup set).
+  static std::vector<int> Outside(const std::vector<int>& region, const std::vector<int>& inside) {
+    std::vector<int> sorted = inside, out;
+    std::sort(sorted.begin(), sorted.end());
+    for (int i : region)
+      if (!std::binary_search(sorted.begin(), sorted.end(), i)) out.push_back(i);
+    return out;
+  }
+
   void Gather(const std::vector<int>& ids, std::vector<Vec>* p, std::vector<Vec>* n) const {
     for (int i : ids) {
       p->push_back(points_[i]);
@@ -190,14 +246,15 @@ class FreeformStage {
 
   // Step 3: the grid of least penalised cost, if it beats leaving the points unassigned.
   Candidate BestGrid(const std::vector<Vec>& p, const std::vector<Vec>& n,
-                     const ParameterFrame& frame) {
+                     const ParameterFrame& frame, const PartScales& scales) {
     const double n_points = static_cast<double>(p.size());
-    const double cap = o_.threshold * o_.threshold / (s_ * s_);
+    const double s = scales.likelihood_sigma;
+    const double cap = scales.threshold * scales.threshold / (s * s);
     Candidate best;
     best.cost = n_points * cap;  // every point unassigned
     const double aspect = std::min(frame.length_v / frame.length_u, 1.0);
     int worse = 0;
-    for (int nu : {4, 6, 8, 12, 16}) {
+    for (int nu : {4, 6, 8, 12, 16, 24, 32, 48, 64}) {
       nu = std::max(nu, o_.degree + 1);
       const int nv = std::max(o_.degree + 1, static_cast<int>(std::lround(nu * aspect)));
       if (n_points < 5.0 * nu * nv) break;
@@ -205,7 +262,7 @@ class FreeformStage {
       ++result_.fits;
       if (!fit.success) continue;
       double cost = 3.0 * nu * nv * std::log(n_points);
-      for (double r : fit.residuals) cost += std::min(r * r / (s_ * s_), cap);
+      for (double r : fit.residuals) cost += std::min(r * r / (s * s), cap);
       if (cost < best.cost) {
         best.ok = true;
         best.cost = cost;
@@ -219,17 +276,37 @@ class FreeformStage {
   }
 
   // The region's points within both bands of the patch, their largest connected part.
-  std::vector<int> Support(const std::vector<int>& region, const Model& model) {
+  std::vector<int> Support(const std::vector<int>& region, const Model& model,
+                           const PartScales& scales) {
     std::vector<char> in(region.size(), 0);
     ParallelFor(region.size(), threads_, [&](size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) {
         double f;
         const Vec g = model.Gradient(points_[region[k]], &f);
         const double gn = g.norm();
-        in[k] = std::abs(f) < o_.threshold && gn > 0 &&
-                std::abs(g.dot(normals_[region[k]])) >= cos_theta_ * gn;
+        const bool near = std::abs(f) < scales.threshold && gn > 0;
+        in[k] = !near                                                                  ? 0
+                : std::abs(g.dot(normals_[region[k]])) >= scales.cos_normal_angle * gn ? 1
+                                                                                       : 2;
       }
     });
+    // A point within the distance band whose own normal strays (in == 2: an estimated normal's
+    // error is the point's, the surface's is its neighbours') joins when most of its neighbours
+    // in the region pass both bands.
+    for (size_t k = 0; k < region.size(); ++k) member_[region[k]] = static_cast<int>(k);
+    std::vector<char> filled(region.size(), 0);
+    for (size_t k = 0; k < region.size(); ++k) {
+      if (in[k] != 2) continue;
+      int inside = 0, pass = 0;
+      for (int j : neighbours_[region[k]])
+        if (member_[j] >= 0) {
+          ++inside;
+          pass += in[member_[j]] == 1;
+        }
+      filled[k] = 2 * pass > inside;
+    }
+    for (int i : region) member_[i] = -1;
+    for (size_t k = 0; k < region.size(); ++k) in[k] = in[k] == 1 || filled[k];
     std::vector<int> close;
     for (size_t k = 0; k < region.size(); ++k)
       if (in[k]) close.push_back(region[k]);
@@ -262,7 +339,8 @@ class FreeformStage {
     std::vector<int> halves[2];
     for (size_t k = 0; k < p.size(); ++k) halves[along[k] < median ? 0 : 1].push_back(region[k]);
     for (const std::vector<int>& half : halves)
-      for (const std::vector<int>& part : SmoothParts(half)) Process(part, depth + 1);
+      for (const std::vector<int>& part : SmoothParts(half))
+        Process(part, depth + 1, "split_piece");
   }
 
   const std::vector<Vec>& points_;
@@ -270,7 +348,7 @@ class FreeformStage {
   const NeighbourGraph& neighbours_;
   FreeformOptions o_;
   std::vector<int> member_;
-  double cos_theta_ = 0.0, s_ = 0.0;
+  LocalScaleFigures figures_;
   int threads_ = 1;
   FreeformResult result_;
   std::map<int, double> assigned_;  // point -> residual, every accepted patch's support
@@ -280,7 +358,8 @@ class FreeformStage {
 
 bool FreeformOptions::IsValid(std::string* error) const {
   if (!(noise > 0) || !(threshold > 0) || !(normal_angle_deg > 0 && normal_angle_deg < 90) ||
-      min_points < 1 || degree < 1 || degree > SplineLimits::kMaxDegree || max_depth < 0) {
+      min_points < 1 || degree < 1 || degree > SplineLimits::kMaxDegree || max_depth < 0 ||
+      !(spacing >= 0)) {
     *error = "freeform: noise, threshold and normal band must be positive, min_points >= 1";
     return false;
   }
