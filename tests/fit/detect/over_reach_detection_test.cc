@@ -1,5 +1,5 @@
-// The detector's kind check against the neighbours (fit/detect/primitive_detector.h, final stage): a
-// coarse noise-free CAD-like part (the shape of Fit4CAD PC21) whose short full cylinder is
+// The detector's kind check against the neighbours (fit/detect/primitive_detector.h, final stage):
+// a coarse noise-free CAD-like part (the shape of Fit4CAD PC21) whose short full cylinder is
 // explained, within the bands, by a sphere centred on its axis that also takes points of the
 // chamfer next to it. Truth from the generator: each point's face, sampled uniformly by area.
 //   faces: 0 cylinder  radius 12.7, axis x, x in [0, 7.6]
@@ -20,6 +20,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detected_kinds.h"
 
 namespace implicitfit {
 namespace {
@@ -73,8 +74,7 @@ TEST(OverReachDetection, ShortCylinderNextToAChamferIsACylinder) {
     o.seed = seed;
     const DetectionResult r =
         DetectPrimitives(part.cloud.points, part.cloud.normals, nb.indices, nb.spacing, o);
-    std::vector<NodeType> kinds;
-    for (const auto& p : r.primitives) kinds.push_back(p.kind);
+    const std::vector<NodeType> kinds = testsupport::KindsOf(r);
     const SegmentationMetrics m = CompareSegmentations(part.labels, part.kinds, r.labels, kinds);
     const bool ok = m.match[0] >= 0 && m.iou[0] >= 0.5 && kinds[m.match[0]] == NodeType::kCylinder;
     std::printf("seed %u: %zu points, cylinder -> %s IoU %.2f, recall %d/%d\n", seed,

@@ -1,6 +1,6 @@
 // Detection of every primitive in a cloud (fit/detect/primitive_detector.h), judged against the
-// known truth of generated scenes (datasets/generators/scene_generator.h) and of the Fit4CAD and CGAL
-// labelled clouds, with the metrics of fit/detect/segmentation_metrics.h.
+// known truth of generated scenes (datasets/generators/scene_generator.h) and of the Fit4CAD and
+// CGAL labelled clouds, with the metrics of fit/detect/segmentation_metrics.h.
 #include "fit/detect/primitive_detector.h"
 
 #include <gtest/gtest.h>
@@ -15,10 +15,11 @@
 #include "datasets/clouds/cloud_file.h"
 #include "datasets/clouds/cloud_file_info.h"
 #include "datasets/generators/ground_truth.h"
+#include "datasets/generators/scene_generator.h"
 #include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/normal_estimation.h"
-#include "datasets/generators/scene_generator.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detected_kinds.h"
 
 namespace implicitfit {
 namespace {
@@ -28,11 +29,7 @@ DetectionResult Detect(const PointCloud& cloud, DetectionOptions options = {}) {
   return DetectPrimitives(cloud.points, cloud.normals, nb.indices, nb.spacing, options);
 }
 
-std::vector<NodeType> KindsOf(const DetectionResult& r) {
-  std::vector<NodeType> kinds;
-  for (const auto& p : r.primitives) kinds.push_back(p.kind);
-  return kinds;
-}
+using testsupport::KindsOf;
 
 // With IMPLICITFIT_DETECT_VERBOSE set: each ground-truth primitive, its match and IoU.
 void Describe(const std::vector<int>& labels, const std::vector<NodeType>& kinds,

@@ -1,4 +1,5 @@
-// Separators and closures of `reconstruct` (fit/reconstruct/solid_bounding.h), on data with known truth.
+// Separators and closures of `reconstruct` (fit/reconstruct/solid_bounding.h), on data with known
+// truth.
 //   - BestStump against brute force over every threshold of every direction;
 //   - SeparateCells: a cell holding a certain outside sample is outside whatever its votes;
 //   - an open scan: a sharp box (half sizes 1, 0.7, 0.5) sampled without its bottom face gives a
@@ -23,6 +24,7 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/reconstruct/csg_separation.h"
 #include "fit/reconstruct/solid_reconstruction.h"
+#include "support/axis_box.h"
 #include "support/sign_agreement.h"
 
 namespace implicitfit {
@@ -87,18 +89,7 @@ TEST(CsgSeparation, CertainOutsideSampleWins) {
   EXPECT_EQ(sep.terms[0].outside, 0u);
 }
 
-Model SharpBox(const Vec& half) {
-  Model m;
-  std::vector<int> faces;
-  for (int a = 0; a < 3; ++a)
-    for (int s : {-1, 1}) {
-      Vec n = Vec::Zero();
-      n[a] = s;
-      faces.push_back(m.AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), half[a]}));
-    }
-  m.SetRoot(m.AddOperator(NodeType::kIntersection, faces, 0.01, 0.01, 0));
-  return m;
-}
+Model SharpBox(const Vec& half) { return testsupport::AxisBox(half, 0.01, 0.01, 0); }
 
 TEST(SolidClosure, BoxScannedWithoutItsBottom) {
   const Vec half(1, 0.7, 0.5);
