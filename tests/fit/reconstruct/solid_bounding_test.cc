@@ -25,6 +25,7 @@
 #include "fit/reconstruct/csg_separation.h"
 #include "fit/reconstruct/solid_reconstruction.h"
 #include "support/axis_box.h"
+#include "support/sample_in_box.h"
 #include "support/sign_agreement.h"
 
 namespace implicitfit {
@@ -96,13 +97,7 @@ TEST(SolidClosure, BoxScannedWithoutItsBottom) {
   const Model truth = SharpBox(half);
   const double size = 2 * half.maxCoeff();
   const double sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = 6000;
-  so.noise = sigma;
-  so.seed = 11;
-  so.has_box = true;
-  so.box_min = -1.2 * half;
-  so.box_max = 1.2 * half;
+  SampleOptions so = testsupport::SampleInBox(6000, sigma, 11, -1.2 * half, 1.2 * half);
   const SampledCloud sampled = SampleModel(truth, so);
   // The scan: every point but those of the bottom face (z = -0.5, outward normal -z).
   std::vector<Vec> points, normals;
@@ -170,13 +165,7 @@ TEST(SolidSeparator, BallOnStem) {
   truth.SetRoot(truth.AddOperator(NodeType::kUnion, {ball, stem}, 0.01, 0.01, 0));
   const Vec box_lo(-1, -1, -0.2), box_hi(1, 1, 2.5);
   const double sigma = 0.002 * (box_hi - box_lo).maxCoeff();
-  SampleOptions so;
-  so.count = 6000;
-  so.noise = sigma;
-  so.seed = 12;
-  so.has_box = true;
-  so.box_min = box_lo;
-  so.box_max = box_hi;
+  SampleOptions so = testsupport::SampleInBox(6000, sigma, 12, box_lo, box_hi);
   const SampledCloud sampled = SampleModel(truth, so);
   // Labels: the detected surface (ball 0, cylinder 1, foot 2) within 4 sigma with its normal.
   std::vector<int> labels;
