@@ -20,7 +20,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
-#include "support/detected_kinds.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
@@ -69,11 +69,9 @@ TEST(OverReachDetection, ShortCylinderNextToAChamferIsACylinder) {
   for (unsigned seed = 1; seed <= 4; ++seed) {
     Part part = ChamferedDisc(seed, 0.6);
     EnsureOrientedNormals(&part.cloud);
-    const Neighbourhoods nb = FindNeighbourhoods(part.cloud.points);
     DetectionOptions o;
     o.seed = seed;
-    const DetectionResult r =
-        DetectPrimitives(part.cloud.points, part.cloud.normals, nb.indices, nb.spacing, o);
+    const DetectionResult r = testsupport::DetectCloud(part.cloud, o);
     const std::vector<NodeType> kinds = testsupport::KindsOf(r);
     const SegmentationMetrics m = CompareSegmentations(part.labels, part.kinds, r.labels, kinds);
     const bool ok = m.match[0] >= 0 && m.iou[0] >= 0.5 && kinds[m.match[0]] == NodeType::kCylinder;

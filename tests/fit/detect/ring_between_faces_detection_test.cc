@@ -23,7 +23,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
-#include "support/detected_kinds.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
@@ -79,11 +79,9 @@ TEST(RingBetweenFacesDetection, TwoRowCylinderRingIsRecoveredAsACylinder) {
   for (double turn : {0.0, 0.1, 0.2})
     for (unsigned seed : {1u, 2u}) {
       const RingScene s = MakeRingScene(turn);
-      const Neighbourhoods nb = FindNeighbourhoods(s.cloud.points);
       DetectionOptions options;
       options.seed = seed;
-      const DetectionResult r =
-          DetectPrimitives(s.cloud.points, s.cloud.normals, nb.indices, nb.spacing, options);
+      const DetectionResult r = testsupport::DetectCloud(s.cloud, options);
       const std::vector<NodeType> kinds = testsupport::KindsOf(r);
       const SegmentationMetrics m = CompareSegmentations(s.labels, s.kinds, r.labels, kinds);
       const int g = m.match[1];

@@ -11,15 +11,14 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
-#include "support/detected_kinds.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
 
 DetectionResult Detect(PointCloud* cloud) {
   EnsureOrientedNormals(cloud);
-  const Neighbourhoods nb = FindNeighbourhoods(cloud->points);
-  return DetectPrimitives(cloud->points, cloud->normals, nb.indices, nb.spacing);
+  return testsupport::DetectCloud(*cloud);
 }
 
 // n points uniform on [x0, x1] x [0, 1] at height z, Gaussian noise sigma along z.

@@ -22,7 +22,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
-#include "support/detected_kinds.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
@@ -157,9 +157,7 @@ struct Tally {
 };
 
 void Score(const char* name, const TangentScene& s, Tally* tally) {
-  const Neighbourhoods nb = FindNeighbourhoods(s.cloud.points);
-  const DetectionResult r =
-      DetectPrimitives(s.cloud.points, s.cloud.normals, nb.indices, nb.spacing, DetectionOptions{});
+  const DetectionResult r = testsupport::DetectCloud(s.cloud);
   const std::vector<NodeType> kinds = testsupport::KindsOf(r);
   const SegmentationMetrics m = CompareSegmentations(s.labels, s.kinds, r.labels, kinds);
   std::printf("%s: recall %d/%d precision %d/%d kinds", name, m.recovered, m.truth_counted,
