@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "support/run_command.h"
+#include "support/usage_errors.h"
 
 namespace {
 
@@ -62,22 +63,17 @@ TEST(MeshCommand, BadInputExitsTwoWithoutAFile) {
       R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
   WriteText(dir + "/broken.json",
             R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere"}})");
-  struct Case {
-    std::string args, message;
-  } cases[] = {
-      {dir + "/missing.json --out " + dir + "/m.ply", "missing.json"},
-      {dir + "/broken.json --out " + dir + "/m.ply", "broken.json"},
-      {dir + "/sphere.json --out " + dir + "/m.ply --box 1,1,1,0,0,0", "--box"},
-      {dir + "/sphere.json --out " + dir + "/m.ply --cell -1", "--cell"},
-      {dir + "/sphere.json --out " + dir + "/m.ply --cell 1e-5", "too fine"},
-      {dir + "/sphere.json --out " + dir + "/m.obj", "m.obj"},
-  };
-  for (const Case& c : cases) {
-    const auto r = RunCommand(kCli + " mesh " + c.args);
-    EXPECT_EQ(r.exit_code, 2) << c.args;
-    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
-    EXPECT_FALSE(FileExists(dir + "/m.ply")) << c.args;
-  }
+  testsupport::ExpectUsageErrors(
+      kCli + " mesh",
+      {
+          {dir + "/missing.json --out " + dir + "/m.ply", "missing.json"},
+          {dir + "/broken.json --out " + dir + "/m.ply", "broken.json"},
+          {dir + "/sphere.json --out " + dir + "/m.ply --box 1,1,1,0,0,0", "--box"},
+          {dir + "/sphere.json --out " + dir + "/m.ply --cell -1", "--cell"},
+          {dir + "/sphere.json --out " + dir + "/m.ply --cell 1e-5", "too fine"},
+          {dir + "/sphere.json --out " + dir + "/m.obj", "m.obj"},
+      },
+      dir + "/m.ply");
 }
 
 }  // namespace
@@ -128,7 +124,8 @@ TEST(MeshCommand, ClipToTetrahedronMeshesGuosObject) {
   EXPECT_LT(worst, 1e-9);
   std::map<std::pair<int, int>, int> uses;
   for (const auto& t : clipped.f)
-    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    for (int k = 0; k < 3; ++k)
+      ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
   long open = 0;
   for (const auto& [edge, n] : uses) open += n != 2;
   EXPECT_EQ(open, 0);
@@ -138,10 +135,12 @@ TEST(MeshCommand, ClipToTetrahedronMeshesGuosObject) {
   r = RunCommand(kCli + " mesh " + dir + "/ball.json --out " + dir + "/u.ply" + box);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   double unclipped_worst = 0;
-  for (const auto& x : read(Slurp(dir + "/u.ply")).v) unclipped_worst = std::max(unclipped_worst, outside(x));
+  for (const auto& x : read(Slurp(dir + "/u.ply")).v)
+    unclipped_worst = std::max(unclipped_worst, outside(x));
   EXPECT_GT(unclipped_worst, 0.1);
   WriteText(dir + "/p.xyz", "-0.1 0.1 0.1\n0.25 0.25 0.25\n");
-  const auto e = RunCommand(kCli + " eval " + dir + "/ball.json " + dir + "/p.xyz --clip-to-tetrahedron");
+  const auto e =
+      RunCommand(kCli + " eval " + dir + "/ball.json " + dir + "/p.xyz --clip-to-tetrahedron");
   ASSERT_EQ(e.exit_code, 0) << e.err;
   std::istringstream values(e.out);
   double outside_value, inside_value;
@@ -149,9 +148,13 @@ TEST(MeshCommand, ClipToTetrahedronMeshesGuosObject) {
   EXPECT_NEAR(outside_value, 0.1, 1e-12);  // the face plane x = 0 (the patch's f is < 0 there)
   EXPECT_NEAR(inside_value, 0.1875 - 0.25, 1e-12);  // the patch: the faces are farther
   // A model without a patch: exit 2, no file.
-  WriteText(dir + "/s.json",
-            R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
-  EXPECT_EQ(RunCommand(kCli + " mesh " + dir + "/s.json --out " + dir + "/s.ply --clip-to-tetrahedron").exit_code, 2);
+  WriteText(
+      dir + "/s.json",
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
+  EXPECT_EQ(
+      RunCommand(kCli + " mesh " + dir + "/s.json --out " + dir + "/s.ply --clip-to-tetrahedron")
+          .exit_code,
+      2);
   EXPECT_FALSE(FileExists(dir + "/s.ply"));
 }
 

@@ -13,10 +13,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "jobs/reconstruct_job.h"
 #include "datasets/generators/generated_solids.h"
 #include "datasets/generators/model_sampler.h"
 #include "datasets/normals/normal_estimation.h"
+#include "jobs/reconstruct_job.h"
+#include "support/sample_in_box.h"
 #include "support/sign_agreement.h"
 
 namespace implicitfit {
@@ -54,13 +55,7 @@ struct PointsOnlyOutcome {
 PointsOnlyOutcome ReconstructPointsOnly(const GeneratedSolid& solid, int points, unsigned seed) {
   const double size = (solid.box_max - solid.box_min).maxCoeff();
   const double sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = points;
-  so.noise = sigma;
-  so.seed = seed;
-  so.has_box = true;
-  so.box_min = solid.box_min;
-  so.box_max = solid.box_max;
+  SampleOptions so = testsupport::SampleInBox(points, sigma, seed, solid.box_min, solid.box_max);
   PointCloud cloud = SampleModel(solid.truth, so).cloud;
   cloud.normals.clear();  // points only
   const NormalResult normals = EnsureOrientedNormals(&cloud);
@@ -108,8 +103,8 @@ PointsOnlyOutcome ReconstructPointsOnly(const GeneratedSolid& solid, int points,
   for (const double scale : {1.5, 10.0, 1000.0}) {
     const int bad = NonPositiveOnBoxFaces(r.model, solid.box_min, solid.box_max, scale);
     if (bad > 0) {
-      std::snprintf(line, sizeof line, "f <= 0 at %d points of the box %g times the part's; ",
-                    bad, scale);
+      std::snprintf(line, sizeof line, "f <= 0 at %d points of the box %g times the part's; ", bad,
+                    scale);
       out.truth_failures += line;
     }
   }
@@ -150,7 +145,9 @@ TEST(PointsOnlyReconstruction, FlangedShaftWithBlindBore) {
 TEST(PointsOnlyReconstruction, LBracketWithFilletAndHoles) {
   CheckPointsOnly(LBracketSolid(), 8000, 1);
 }
-TEST(PointsOnlyReconstruction, DomeOnPlateWithHoles) { CheckPointsOnly(DomeOnPlateSolid(), 8000, 1); }
+TEST(PointsOnlyReconstruction, DomeOnPlateWithHoles) {
+  CheckPointsOnly(DomeOnPlateSolid(), 8000, 1);
+}
 // The older generated solids (datasets/generators/generated_solids.h), points only.
 TEST(PointsOnlyReconstruction, PlateWithFilletedBore) {
   CheckPointsOnly(PlateWithFilletedBoreSolid(), 8000, 1);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "support/run_command.h"
+#include "support/usage_errors.h"
 
 namespace {
 
@@ -166,23 +167,20 @@ TEST(ReconstructCommand, UsageErrorsExitTwoWithoutOutput) {
                 .exit_code,
             0);
   WriteText(dir + "/bad_scene.json", R"({"format": "implicitfit-scene", "version": 1})");
-  struct Case {
-    std::string args, message;
-  } cases[] = {
-      {dir + "/missing.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "missing.xyz"},
-      {dir + "/cloud.xyz --scene " + dir + "/bad_scene.json --out " + dir + "/m.json",
-       "bad_scene.json"},
-      {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json", "500 points"},
-      {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json --mesh " + dir +
-           "/m.obj",
-       "m.obj"},
-  };
-  for (const Case& c : cases) {
-    const auto r = RunCommand(kCli + " reconstruct " + c.args);
-    EXPECT_EQ(r.exit_code, 2) << c.args;
-    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
-    EXPECT_FALSE(FileExists(dir + "/m.json")) << c.args;
-  }
+  testsupport::ExpectUsageErrors(
+      kCli + " reconstruct",
+      {
+          {dir + "/missing.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json",
+           "missing.xyz"},
+          {dir + "/cloud.xyz --scene " + dir + "/bad_scene.json --out " + dir + "/m.json",
+           "bad_scene.json"},
+          {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json",
+           "500 points"},
+          {dir + "/cloud.xyz --scene " + dir + "/scene.json --out " + dir + "/m.json --mesh " +
+               dir + "/m.obj",
+           "m.obj"},
+      },
+      dir + "/m.json");
 }
 
 }  // namespace

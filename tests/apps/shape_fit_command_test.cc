@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "support/model_document.h"
 #include "support/read_json.h"
 #include "support/run_command.h"
 
@@ -24,8 +25,7 @@ using testsupport::ReadJson;
 std::string SampleAndFit(const std::string& name, const std::string& root,
                          const std::string& kind) {
   const std::string dir = testsupport::ScratchDir(name);
-  WriteText(dir + "/truth.json",
-            R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}");
+  WriteText(dir + "/truth.json", testsupport::ModelDocument(root));
   const auto s = RunCommand(kCli + " sample " + dir +
                             "/truth.json --count 4000 --noise 0.002 --outliers 0.15 --seed 5" +
                             " --out " + dir + "/cloud.xyz");

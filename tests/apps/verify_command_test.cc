@@ -10,12 +10,14 @@
 #include <sstream>
 #include <string>
 
+#include "support/model_document.h"
 #include "support/run_command.h"
 
 namespace {
 
 using nlohmann::json;
 using testsupport::FileExists;
+using testsupport::ModelDocument;
 using testsupport::RunCommand;
 using testsupport::ScratchDir;
 using testsupport::Slurp;
@@ -46,23 +48,19 @@ std::string Box(double hx, double hy, double hz, const std::string& prefix) {
          faces + "]}";
 }
 
-std::string Document(const std::string& root) {
-  return R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}";
-}
-
 class VerifyCommand : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = ScratchDir("verify");
-    WriteText(dir_ + "/box.json", Document(Box(1, 0.7, 0.5, "p")));
-    ASSERT_EQ(RunCommand(kCli + " sample " + dir_ +
-                         "/box.json --count 4000 --noise 0.004 --seed 3 --out " + dir_ +
-                         "/cloud.xyz")
-                  .exit_code,
-              0);
+    WriteText(dir_ + "/box.json", ModelDocument(Box(1, 0.7, 0.5, "p")));
+    ASSERT_EQ(
+        RunCommand(kCli + " sample " + dir_ +
+                   "/box.json --count 4000 --noise 0.004 --seed 3 --out " + dir_ + "/cloud.xyz")
+            .exit_code,
+        0);
   }
   testsupport::CommandResult Verify(const std::string& root) {
-    WriteText(dir_ + "/model.json", Document(root));
+    WriteText(dir_ + "/model.json", ModelDocument(root));
     return RunCommand(kCli + " verify " + dir_ + "/model.json " + dir_ + "/cloud.xyz --quiet");
   }
   std::string dir_;
@@ -121,13 +119,14 @@ TEST_F(VerifyCommand, ReconstructWritesNoModelWhenVerificationFails) {
   for (int k = 0; k < 6; ++k) {
     double n[3] = {0, 0, 0};
     n[k / 2] = k % 2 ? 1 : -1;
-    scene += std::string(k ? "," : "") + R"({"name": "p)" + std::to_string(k) +
-             R"(", "model": )" + Plane(n[0], n[1], n[2], half[k / 2], "p" + std::to_string(k)) +
+    scene += std::string(k ? "," : "") + R"({"name": "p)" + std::to_string(k) + R"(", "model": )" +
+             Plane(n[0], n[1], n[2], half[k / 2], "p" + std::to_string(k)) +
              R"(, "points": 100, "rms_distance": 0.004, "normal_side": "outward"})";
   }
   WriteText(dir_ + "/scene.json",
             R"({"format": "implicitfit-scene", "version": 1, "cloud": "noisy.xyz", "points": 4000,)"
-            R"( "unassigned": 0, "primitives": [)" + scene + "]}");
+            R"( "unassigned": 0, "primitives": [)" +
+                scene + "]}");
   const std::string base = kCli + " reconstruct " + dir_ + "/noisy.xyz --scene " + dir_ +
                            "/scene.json --out " + dir_ + "/m.json --mesh " + dir_ +
                            "/m.ply --report " + dir_ + "/r.json";
@@ -149,8 +148,7 @@ TEST_F(VerifyCommand, ReconstructWritesNoModelWhenVerificationFails) {
   EXPECT_TRUE(FileExists(dir_ + "/m.ply"));
   const json model = json::parse(Slurp(dir_ + "/m.json"));
   EXPECT_FALSE(model["verification"]["verified"].get<bool>());
-  EXPECT_NE(model["verification"]["reason"].get<std::string>().find("explains"),
-            std::string::npos);
+  EXPECT_NE(model["verification"]["reason"].get<std::string>().find("explains"), std::string::npos);
   EXPECT_TRUE(json::parse(Slurp(dir_ + "/r.json"))["model_written"].get<bool>());
   // `verify` of the kept model says the same
   const auto v = RunCommand(kCli + " verify " + dir_ + "/m.json " + dir_ + "/noisy.xyz --quiet");

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "apps/hostile/hostile_case.h"
+#include "support/fibonacci_sphere.h"
 
 namespace hostile {
 namespace {
@@ -40,10 +41,8 @@ std::string PlaneXyz(int n, bool normals, double noise, unsigned seed) {
 std::string SphereXyz(int n, double radius, bool normals) {
   std::ostringstream s;
   s.precision(12);
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {  // Fibonacci sphere: even, deterministic
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
-    const double x = r * std::cos(golden * i), y = r * std::sin(golden * i);
+  for (const Eigen::Vector3d& u : testsupport::FibonacciSphere(n)) {  // even, deterministic
+    const double x = u.x(), y = u.y(), z = u.z();
     s << radius * x << ' ' << radius * y << ' ' << radius * z;
     if (normals) s << ' ' << x << ' ' << y << ' ' << z;
     s << '\n';
@@ -78,8 +77,7 @@ std::string PlyAsciiPoints(int n) {
 }
 
 std::string PcdHeader(const std::string& data, long long points, const std::string& fields,
-                      const std::string& size, const std::string& type,
-                      const std::string& count) {
+                      const std::string& size, const std::string& type, const std::string& count) {
   return "# .PCD v0.7\nVERSION 0.7\nFIELDS " + fields + "\nSIZE " + size + "\nTYPE " + type +
          "\nCOUNT " + count + "\nWIDTH " + std::to_string(points) +
          "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(points) + "\nDATA " +
@@ -108,8 +106,7 @@ std::string PatchModel(int degree) {
   return "{\"format\": \"implicitfit-model\", \"version\": 1, \"root\": {\"type\": "
          "\"bernstein_patch\", \"degree\": " +
          std::to_string(degree) +
-         ", \"vertices\": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], \"control_points\": [" + cp +
-         "]}}\n";
+         ", \"vertices\": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], \"control_points\": [" + cp + "]}}\n";
 }
 
 std::string BlobsModel(int count) {

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "datasets/generators/model_sampler.h"
+#include "support/axis_box.h"
 
 namespace implicitfit {
 namespace {
@@ -65,15 +66,7 @@ TEST(SampleByArea, CappedCylinderCapsGetTheirArea) {
 
 TEST(SampleByArea, BoxFacesGetTheirAreasAlsoInAPartialView) {
   const Vec half(1.0, 0.5, 0.25);  // a 2 x 1 x 0.5 box
-  Model m;
-  std::vector<int> faces;
-  for (int a = 0; a < 3; ++a)
-    for (int s : {-1, 1}) {
-      Vec n = Vec::Zero();
-      n[a] = s;
-      faces.push_back(m.AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), half[a]}));
-    }
-  m.SetRoot(m.AddOperator(NodeType::kIntersection, faces, 0.1, 0.1, 0));
+  const Model m = testsupport::AxisBox(half, 0.1, 0.1, 0);
   SampleOptions o = Options(20000, 5);
   o.has_box = true;
   o.box_min = -1.2 * half;

@@ -1,5 +1,5 @@
-// Meshes of zero sets (datasets/meshing/model_mesher): geometry against closed forms (the sphere's and
-// torus's distance functions), topology by counting (every edge in exactly two triangles, the
+// Meshes of zero sets (datasets/meshing/model_mesher): geometry against closed forms (the sphere's
+// and torus's distance functions), topology by counting (every edge in exactly two triangles, the
 // Euler characteristic V - E + F of the closed surface: sphere 2, torus 0).
 #include "datasets/meshing/model_mesher.h"
 
@@ -8,6 +8,8 @@
 #include <cmath>
 #include <map>
 #include <utility>
+
+#include "support/axis_box.h"
 
 namespace implicitfit {
 namespace {
@@ -101,18 +103,7 @@ TEST(ModelMesher, SharpBlendAndPatchSolidsAreWatertight) {
     const int p = half.AddPrimitive(NodeType::kPlane, {0, 0, -1, 0});
     half.SetRoot(half.AddOperator(NodeType::kIntersection, {s, p}, 0.1, 0.1, 0));
   }
-  Model rounded;
-  {
-    std::vector<int> faces;
-    for (int a = 0; a < 3; ++a)
-      for (int s : {-1, 1}) {
-        std::vector<double> n(3, 0.0);
-        n[a] = s;
-        faces.push_back(
-            rounded.AddPrimitive(NodeType::kPlane, {n[0], n[1], n[2], a == 0 ? 1.0 : 0.6}));
-      }
-    rounded.SetRoot(rounded.AddOperator(NodeType::kIntersection, faces, 0.2, 0.15, 3));
-  }
+  Model rounded = testsupport::AxisBox(Eigen::Vector3d(1.0, 0.6, 0.6), 0.2, 0.15, 3);
   Model patch;
   {
     // q(x) = |x|^2 - 1 written as a degree-2 Bernstein polynomial over a big tetrahedron:

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "datasets/meshing/model_mesher.h"
+#include "support/axis_box.h"
 
 namespace implicitfit {
 namespace {
@@ -80,18 +81,7 @@ double SignedVolume(const TriangleMesh& mesh) {
 
 const Vec kHalf(1.0, 0.6, 0.45);  // the box's half sides
 
-Model SharpBox() {
-  Model box;
-  std::vector<int> faces;
-  for (int a = 0; a < 3; ++a)
-    for (int s : {-1, 1}) {
-      std::vector<double> n(3, 0.0);
-      n[a] = s;
-      faces.push_back(box.AddPrimitive(NodeType::kPlane, {n[0], n[1], n[2], kHalf[a]}));
-    }
-  box.SetRoot(box.AddOperator(NodeType::kIntersection, faces, 0.0, 0.0, 0));
-  return box;
-}
+Model SharpBox() { return testsupport::AxisBox(kHalf, 0.0, 0.0, 0); }
 
 MeshOptions Options(bool sharp) {
   MeshOptions options;

@@ -10,6 +10,7 @@
 
 #include "datasets/clouds/cloud_file.h"
 #include "datasets/normals/normal_orientation.h"
+#include "support/fibonacci_sphere.h"
 #include "support/run_command.h"
 
 namespace implicitfit {
@@ -18,10 +19,7 @@ namespace {
 // Fibonacci-spiral samples of a sphere, with their exact outward normals.
 PointCloud Sphere(const Eigen::Vector3d& centre, double radius, int count) {
   PointCloud c;
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / count, r = std::sqrt(1.0 - z * z);
-    const Eigen::Vector3d n(r * std::cos(golden * i), r * std::sin(golden * i), z);
+  for (const Eigen::Vector3d& n : testsupport::FibonacciSphere(count)) {
     c.points.push_back(centre + radius * n);
     c.normals.push_back(n);
   }

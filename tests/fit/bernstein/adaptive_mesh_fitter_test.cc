@@ -23,6 +23,7 @@
 #include "model/bernstein/bernstein_mesh.h"
 #include "model/bernstein/bernstein_patch.h"
 #include "model/bernstein/grid_refinement.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -166,13 +167,7 @@ TEST(AdaptiveMeshFitter, ProjectionKeepsAGlobalQuadricOnARefinedGrid) {
 
 TEST(AdaptiveMeshFitter, RefinementLowersTheResidualOnAChamferedBlock) {
   const CadSolid solid = ChamferedBlockSolid();
-  SampleOptions so;
-  so.count = 3000;
-  so.seed = 21;
-  so.has_box = true;
-  so.box_min = solid.box_min;
-  so.box_max = solid.box_max;
-  so.noise = 0.001 * 2.0;
+  SampleOptions so = testsupport::SampleInBox(3000, 0.001 * 2.0, 21, solid.box_min, solid.box_max);
   const SampledCloud cloud = SampleModel(solid.truth, so);
   MeshFitOptions o;
   o.cells = 4;
@@ -207,10 +202,11 @@ TEST(AdaptiveMeshFitter, RefinementLowersTheResidualOnAChamferedBlock) {
     return std::sqrt(ss / clean.cloud.points.size());
   };
   EXPECT_LT(truth_rms(refined), truth_rms(uniform));
-  std::printf("chamfered block: uniform rms %.3g (%lld patches), adaptive rms %.3g (%lld leaves, "
-              "%lld sharp faces), %.2f s + %.2f s\n",
-              uniform.rms, uniform.tetrahedra, refined.rms, refined.leaves, refined.sharp_faces,
-              uniform.seconds, refined.seconds);
+  std::printf(
+      "chamfered block: uniform rms %.3g (%lld patches), adaptive rms %.3g (%lld leaves, "
+      "%lld sharp faces), %.2f s + %.2f s\n",
+      uniform.rms, uniform.tetrahedra, refined.rms, refined.leaves, refined.sharp_faces,
+      uniform.seconds, refined.seconds);
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
-// The generalised winding number of oriented point clouds (fit/bernstein/winding_number.h) against closed
-// forms: ~1 inside and ~0 outside a sampled closed sphere, and on the axis of an open hemisphere
-// (unit radius, the z >= 0 half) w(0, 0, z) = 1/2 + z / (2 sqrt(1 + z^2)) for |z| < 1: the
-// hemisphere and the unit disk at z = 0 (normal -z) bound the half ball, so w_hemisphere =
-// [x in the half ball] - w_disk, and the disk subtends 2 pi (1 - |z| / sqrt(1 + z^2)) at
-// (0, 0, z). At z = 0 this is 1/2 exactly: the level 1/2 spans the rim (the flat cap). The point
-// areas against the sphere's area 4 pi and a two-density plane.
+// The generalised winding number of oriented point clouds (fit/bernstein/winding_number.h) against
+// closed forms: ~1 inside and ~0 outside a sampled closed sphere, and on the axis of an open
+// hemisphere (unit radius, the z >= 0 half) w(0, 0, z) = 1/2 + z / (2 sqrt(1 + z^2)) for |z| < 1:
+// the hemisphere and the unit disk at z = 0 (normal -z) bound the half ball, so w_hemisphere = [x
+// in the half ball] - w_disk, and the disk subtends 2 pi (1 - |z| / sqrt(1 + z^2)) at (0, 0, z). At
+// z = 0 this is 1/2 exactly: the level 1/2 spans the rim (the flat cap). The point areas against
+// the sphere's area 4 pi and a two-density plane.
 #include "fit/bernstein/winding_number.h"
 
 #include <gtest/gtest.h>
@@ -13,21 +13,13 @@
 #include <numeric>
 #include <random>
 
+#include "support/fibonacci_sphere.h"
+
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
-
-// n points spread evenly over the unit sphere (Fibonacci spiral); normals = points.
-std::vector<Vec> FibonacciSphere(int n) {
-  std::vector<Vec> p;
-  const double golden = M_PI * (3 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z);
-    p.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
-  }
-  return p;
-}
+using testsupport::FibonacciSphere;  // normals = points
 
 TEST(PointAreas, SumToTheSphereArea) {
   const std::vector<Vec> p = FibonacciSphere(4000);

@@ -1,5 +1,5 @@
-// The detector's kind check against the neighbours (fit/detect/primitive_detector.h, final stage): a
-// coarse noise-free CAD-like part (the shape of Fit4CAD PC21) whose short full cylinder is
+// The detector's kind check against the neighbours (fit/detect/primitive_detector.h, final stage):
+// a coarse noise-free CAD-like part (the shape of Fit4CAD PC21) whose short full cylinder is
 // explained, within the bands, by a sphere centred on its axis that also takes points of the
 // chamfer next to it. Truth from the generator: each point's face, sampled uniformly by area.
 //   faces: 0 cylinder  radius 12.7, axis x, x in [0, 7.6]
@@ -20,6 +20,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
@@ -68,13 +69,10 @@ TEST(OverReachDetection, ShortCylinderNextToAChamferIsACylinder) {
   for (unsigned seed = 1; seed <= 4; ++seed) {
     Part part = ChamferedDisc(seed, 0.6);
     EnsureOrientedNormals(&part.cloud);
-    const Neighbourhoods nb = FindNeighbourhoods(part.cloud.points);
     DetectionOptions o;
     o.seed = seed;
-    const DetectionResult r =
-        DetectPrimitives(part.cloud.points, part.cloud.normals, nb.indices, nb.spacing, o);
-    std::vector<NodeType> kinds;
-    for (const auto& p : r.primitives) kinds.push_back(p.kind);
+    const DetectionResult r = testsupport::DetectCloud(part.cloud, o);
+    const std::vector<NodeType> kinds = testsupport::KindsOf(r);
     const SegmentationMetrics m = CompareSegmentations(part.labels, part.kinds, r.labels, kinds);
     const bool ok = m.match[0] >= 0 && m.iou[0] >= 0.5 && kinds[m.match[0]] == NodeType::kCylinder;
     std::printf("seed %u: %zu points, cylinder -> %s IoU %.2f, recall %d/%d\n", seed,

@@ -1,6 +1,6 @@
 // Detection of every primitive in a cloud (fit/detect/primitive_detector.h), judged against the
-// known truth of generated scenes (datasets/generators/scene_generator.h) and of the Fit4CAD and CGAL
-// labelled clouds, with the metrics of fit/detect/segmentation_metrics.h.
+// known truth of generated scenes (datasets/generators/scene_generator.h) and of the Fit4CAD and
+// CGAL labelled clouds, with the metrics of fit/detect/segmentation_metrics.h.
 #include "fit/detect/primitive_detector.h"
 
 #include <gtest/gtest.h>
@@ -15,24 +15,17 @@
 #include "datasets/clouds/cloud_file.h"
 #include "datasets/clouds/cloud_file_info.h"
 #include "datasets/generators/ground_truth.h"
+#include "datasets/generators/scene_generator.h"
 #include "datasets/normals/neighbourhoods.h"
 #include "datasets/normals/normal_estimation.h"
-#include "datasets/generators/scene_generator.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
 
-DetectionResult Detect(const PointCloud& cloud, DetectionOptions options = {}) {
-  const Neighbourhoods nb = FindNeighbourhoods(cloud.points);
-  return DetectPrimitives(cloud.points, cloud.normals, nb.indices, nb.spacing, options);
-}
-
-std::vector<NodeType> KindsOf(const DetectionResult& r) {
-  std::vector<NodeType> kinds;
-  for (const auto& p : r.primitives) kinds.push_back(p.kind);
-  return kinds;
-}
+using testsupport::DetectCloud;
+using testsupport::KindsOf;
 
 // With IMPLICITFIT_DETECT_VERBOSE set: each ground-truth primitive, its match and IoU.
 void Describe(const std::vector<int>& labels, const std::vector<NodeType>& kinds,
@@ -86,7 +79,7 @@ TEST(PrimitiveDetector, GeneratedScenesAreRecoveredOnManySeeds) {
     const GeneratedScene scene = GenerateScene(o);
     DetectionOptions d;
     d.seed = seed;
-    const DetectionResult r = Detect(scene.cloud, d);
+    const DetectionResult r = DetectCloud(scene.cloud, d);
     ExpectConsistent(r, scene.cloud.size());
     const SegmentationMetrics m = Score(scene, r);
     EXPECT_GE(m.recall, 5.0 / 6.0) << "seed " << seed;  // at most one of six primitives missed
@@ -101,7 +94,7 @@ TEST(PrimitiveDetector, RecoveredParametersAreCloseToTheTruth) {
   GeneratedSceneOptions o;
   o.seed = 3;
   const GeneratedScene scene = GenerateScene(o);
-  const DetectionResult r = Detect(scene.cloud);
+  const DetectionResult r = DetectCloud(scene.cloud);
   const SegmentationMetrics m = Score(scene, r);
   for (size_t g = 0; g < scene.models.size(); ++g) {
     ASSERT_GE(m.match[g], 0);
@@ -132,7 +125,7 @@ TEST(PrimitiveDetector, PlaneOnlySceneGivesOnlyPlanes) {
     o.seed = seed;
     o.planes_only = true;
     const GeneratedScene scene = GenerateScene(o);
-    const DetectionResult r = Detect(scene.cloud);
+    const DetectionResult r = DetectCloud(scene.cloud);
     ASSERT_FALSE(r.primitives.empty());
     for (const auto& p : r.primitives) EXPECT_EQ(p.kind, NodeType::kPlane) << "seed " << seed;
     const SegmentationMetrics m = Score(scene, r);
@@ -146,7 +139,7 @@ TEST(PrimitiveDetector, IcosahedronGivesTwentyPlanes) {
   o.noise = 0.002;
   const GeneratedScene scene = GenerateIcosahedron(o);
   ASSERT_EQ(scene.models.size(), 20u);
-  const DetectionResult r = Detect(scene.cloud);
+  const DetectionResult r = DetectCloud(scene.cloud);
   const SegmentationMetrics m = Score(scene, r);
   EXPECT_EQ(r.primitives.size(), 20u);
   for (const auto& p : r.primitives) EXPECT_EQ(p.kind, NodeType::kPlane);
@@ -161,7 +154,7 @@ TEST(PrimitiveDetector, SameResultForOneAndTwoThreads) {
   DetectionOptions one, two;
   one.num_threads = 1;
   two.num_threads = 2;
-  const DetectionResult a = Detect(scene.cloud, one), b = Detect(scene.cloud, two);
+  const DetectionResult a = DetectCloud(scene.cloud, one), b = DetectCloud(scene.cloud, two);
   ASSERT_EQ(a.primitives.size(), b.primitives.size());
   EXPECT_EQ(a.labels, b.labels);
   for (size_t k = 0; k < a.primitives.size(); ++k) {
@@ -179,7 +172,7 @@ TEST(PrimitiveDetector, RandomPointsGiveNoPrimitive) {
     cloud.points.emplace_back(u(rng), u(rng), u(rng));
     cloud.normals.push_back(Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized());
   }
-  const DetectionResult r = Detect(cloud);
+  const DetectionResult r = DetectCloud(cloud);
   EXPECT_TRUE(r.primitives.empty())
       << r.primitives.size() << " primitives, first " << NodeTypeName(r.primitives[0].kind)
       << " with " << r.primitives[0].points.size() << " points";
@@ -217,7 +210,7 @@ TEST(PrimitiveDetector, Fit4CadRecall) {
     for (int& l : labels) l -= 1;
     const std::vector<NodeType> kinds =
         ReadFit4CadKinds(root + "fit4cad_" + name + "/" + name + "_implicit.txt");
-    const DetectionResult r = Detect(cloud);
+    const DetectionResult r = DetectCloud(cloud);
     const SegmentationMetrics m = CompareSegmentations(labels, kinds, r.labels, KindsOf(r));
     Describe(labels, kinds, r, m);
     std::printf("%s: recall %d/%d precision %d/%d mean IoU %.2f\n", name.c_str(), m.recovered,
@@ -241,7 +234,7 @@ TEST(PrimitiveDetector, Fit4CadPc33NarrowRingIsOneSupport) {
   CloudFileInfo info;
   PointCloud cloud = ReadCloudFile(path, &info);
   EnsureOrientedNormals(&cloud);
-  const DetectionResult r = Detect(cloud);
+  const DetectionResult r = DetectCloud(cloud);
   int ring = 0;
   for (int l : info.labels) ring += l == 2;
   ASSERT_EQ(ring, 143);
@@ -271,7 +264,7 @@ TEST(PrimitiveDetector, CgalIcosahedronFaces) {
   if (!std::ifstream(path)) GTEST_SKIP() << "no " << path;
   const PointCloud cloud = ReadCloudFile(path);
   const std::vector<int> labels = ReadPlyIntProperty(path, "segment_index");
-  const DetectionResult r = Detect(cloud);
+  const DetectionResult r = DetectCloud(cloud);
   const SegmentationMetrics m = CompareSegmentations(
       labels, std::vector<NodeType>(20, NodeType::kPlane), r.labels, KindsOf(r));
   Describe(labels, std::vector<NodeType>(20, NodeType::kPlane), r, m);

@@ -1,5 +1,5 @@
-// A cylinder ring two rows high between two faces (fit/detect/primitive_detector.h: the leftover pass,
-// the band cylinder and the distance-then-normal re-assignment), rebuilt from the failure on
+// A cylinder ring two rows high between two faces (fit/detect/primitive_detector.h: the leftover
+// pass, the band cylinder and the distance-then-normal re-assignment), rebuilt from the failure on
 // Fit4CAD PC34 (a 261-point ring of radius 10.5, 0.75 high, at spacing 0.6, between a plane
 // below and a spherical dome above). Generated like that CAD sample: a bottom annulus z = 0
 // (6 <= r <= 10.2) on a square grid of step 0.6, the ring r = 10.5 as two rows of points (z = 0
@@ -23,6 +23,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
@@ -78,13 +79,10 @@ TEST(RingBetweenFacesDetection, TwoRowCylinderRingIsRecoveredAsACylinder) {
   for (double turn : {0.0, 0.1, 0.2})
     for (unsigned seed : {1u, 2u}) {
       const RingScene s = MakeRingScene(turn);
-      const Neighbourhoods nb = FindNeighbourhoods(s.cloud.points);
       DetectionOptions options;
       options.seed = seed;
-      const DetectionResult r =
-          DetectPrimitives(s.cloud.points, s.cloud.normals, nb.indices, nb.spacing, options);
-      std::vector<NodeType> kinds;
-      for (const auto& p : r.primitives) kinds.push_back(p.kind);
+      const DetectionResult r = testsupport::DetectCloud(s.cloud, options);
+      const std::vector<NodeType> kinds = testsupport::KindsOf(r);
       const SegmentationMetrics m = CompareSegmentations(s.labels, s.kinds, r.labels, kinds);
       const int g = m.match[1];
       std::printf("turn %.1f seed %u: ring -> %s IoU %.2f, recall %d/%d precision %d/%d\n", turn,

@@ -11,19 +11,19 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
 
 DetectionResult Detect(PointCloud* cloud) {
   EnsureOrientedNormals(cloud);
-  const Neighbourhoods nb = FindNeighbourhoods(cloud->points);
-  return DetectPrimitives(cloud->points, cloud->normals, nb.indices, nb.spacing);
+  return testsupport::DetectCloud(*cloud);
 }
 
 // n points uniform on [x0, x1] x [0, 1] at height z, Gaussian noise sigma along z.
-void AddSheet(PointCloud* cloud, std::vector<int>* labels, int label, int n, double x0,
-              double x1, double z, double sigma, std::mt19937* rng) {
+void AddSheet(PointCloud* cloud, std::vector<int>* labels, int label, int n, double x0, double x1,
+              double z, double sigma, std::mt19937* rng) {
   std::uniform_real_distribution<double> ux(x0, x1), uy(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, sigma);
   for (int i = 0; i < n; ++i) {
@@ -62,8 +62,7 @@ TEST(SurfaceMerging, TwoParallelSheetsFiveSigmaApartStayTwo) {
   AddSheet(&cloud, &labels, 0, 4000, 0.0, 1.0, 0.0, sigma, &rng);
   AddSheet(&cloud, &labels, 1, 4000, 0.0, 1.0, 5 * sigma, sigma, &rng);
   const DetectionResult r = Detect(&cloud);
-  std::vector<NodeType> kinds;
-  for (const auto& p : r.primitives) kinds.push_back(p.kind);
+  const std::vector<NodeType> kinds = testsupport::KindsOf(r);
   const SegmentationMetrics m =
       CompareSegmentations(labels, {NodeType::kPlane, NodeType::kPlane}, r.labels, kinds);
   EXPECT_EQ(m.recovered, 2) << r.primitives.size() << " primitives";

@@ -18,6 +18,7 @@
 #include "datasets/normals/neighbourhoods.h"
 #include "fit/detect/primitive_detector.h"
 #include "model/median.h"
+#include "support/fibonacci_sphere.h"
 
 namespace implicitfit {
 namespace {
@@ -31,10 +32,7 @@ struct Sample {
 // Evenly spread points on a sphere of radius r centred at the origin (Fibonacci lattice).
 Sample Sphere(int n, double r) {
   Sample s;
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, rho = std::sqrt(1.0 - z * z);
-    const Vector3d u(rho * std::cos(golden * i), rho * std::sin(golden * i), z);
+  for (const Vector3d& u : testsupport::FibonacciSphere(n)) {
     s.points.push_back(r * u);
     s.normals.push_back(u);
   }

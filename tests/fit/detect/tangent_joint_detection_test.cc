@@ -1,5 +1,5 @@
-// Detection across tangent-continuous joints (fit/detect/primitive_detector.h): the failure modes of
-// the Fit4CAD clouds rebuilt as generated scenes whose truth comes from the generator below
+// Detection across tangent-continuous joints (fit/detect/primitive_detector.h): the failure modes
+// of the Fit4CAD clouds rebuilt as generated scenes whose truth comes from the generator below
 // (each face sampled from its own closed-form parametrisation, uniformly by area, so every
 // point's label is the face it was drawn on):
 //   rounded edge      top plane, quarter cylinder (the fillet), side plane, all G1 (a torus or a
@@ -22,6 +22,7 @@
 #include "datasets/normals/normal_estimation.h"
 #include "fit/detect/primitive_detector.h"
 #include "fit/detect/segmentation_metrics.h"
+#include "support/detection.h"
 
 namespace implicitfit {
 namespace {
@@ -156,11 +157,8 @@ struct Tally {
 };
 
 void Score(const char* name, const TangentScene& s, Tally* tally) {
-  const Neighbourhoods nb = FindNeighbourhoods(s.cloud.points);
-  const DetectionResult r =
-      DetectPrimitives(s.cloud.points, s.cloud.normals, nb.indices, nb.spacing, DetectionOptions{});
-  std::vector<NodeType> kinds;
-  for (const auto& p : r.primitives) kinds.push_back(p.kind);
+  const DetectionResult r = testsupport::DetectCloud(s.cloud);
+  const std::vector<NodeType> kinds = testsupport::KindsOf(r);
   const SegmentationMetrics m = CompareSegmentations(s.labels, s.kinds, r.labels, kinds);
   std::printf("%s: recall %d/%d precision %d/%d kinds", name, m.recovered, m.truth_counted,
               m.precise, m.detected_counted);

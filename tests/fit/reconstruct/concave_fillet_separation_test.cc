@@ -4,10 +4,10 @@
 // (torus: centre (0, 0, 0.06), axis z, R = 0.36, r = 0.06; the fillet's material is the ring
 // 0.3 < rho < 0.36, 0 < z < 0.06 outside the tube, at most 0.06 (sqrt 2 - 1) = 0.025 thick,
 // less than t = 1% of the diagonal = 0.030). The ring has the sign vector of the empty space
-// above the slab. Checked: with the adaptive offset (fit/reconstruct/offset_samples.h) and the fillet's
-// separators (fit/reconstruct/fillet_separators.h) the torus is carved out in the expression and every
-// noise-free truth point is within 3 sigma of the result's zero set; without either of them
-// the fillet is lost (the largest distance, on the fillet, exceeds 3 sigma).
+// above the slab. Checked: with the adaptive offset (fit/reconstruct/offset_samples.h) and the
+// fillet's separators (fit/reconstruct/fillet_separators.h) the torus is carved out in the
+// expression and every noise-free truth point is within 3 sigma of the result's zero set; without
+// either of them the fillet is lost (the largest distance, on the fillet, exceeds 3 sigma).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/reconstruct/solid_reconstruction.h"
 #include "support/largest_truth_distance.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -51,13 +52,7 @@ TEST(ConcaveFillet, StemOnSlab) {
   const Vec box_lo(-1.2, -1.2, -0.5), box_hi(1.2, 1.2, 1.0);
   const double size = 2.0;
   const double sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = 12000;
-  so.noise = sigma;
-  so.seed = 31;
-  so.has_box = true;
-  so.box_min = box_lo;
-  so.box_max = box_hi;
+  SampleOptions so = testsupport::SampleInBox(12000, sigma, 31, box_lo, box_hi);
   const SampledCloud sampled = SampleModel(truth, so);
   // Labels: slab faces 0-5, stem 6, cap 7, torus 8: the truth surface within 4 sigma whose
   // outward normal the point's normal matches (the torus's: towards its centre circle).

@@ -5,11 +5,11 @@
 // the corner that the rounding cuts away (rho > 0.8, z > -0.2, outside the tube): one cell with
 // many inside and many outside samples, and the tube's points outnumber the top face's near the
 // rim. A plane cannot split it (the corner is a ring). The fillet's box of revolution
-// (fit/reconstruct/fillet_separators.h), now brought by solid tori too, holds the cylinder rho < 0.8 that
-// does. Checked: with the fillet separators every noise-free truth point is within 3 sigma of the
-// result's zero set (0.0006; the bounds from the points' own (h, rho) instead of their normals'
-// feet gave 0.0129, the inner cylinder at 0.716 < R = 0.8); without them the fillet is lost
-// (0.059, the sharp slab).
+// (fit/reconstruct/fillet_separators.h), now brought by solid tori too, holds the cylinder rho <
+// 0.8 that does. Checked: with the fillet separators every noise-free truth point is within 3 sigma
+// of the result's zero set (0.0006; the bounds from the points' own (h, rho) instead of their
+// normals' feet gave 0.0129, the inner cylinder at 0.716 < R = 0.8); without them the fillet is
+// lost (0.059, the sharp slab).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/reconstruct/solid_reconstruction.h"
 #include "support/largest_truth_distance.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -43,13 +44,8 @@ TEST(ConvexFillet, RoundedDiskSlab) {
   truth.SetRoot(truth.AddOperator(NodeType::kUnion, {body, skirt, tube}, 0.01, 0.01, 0));
 
   const double size = 2.0, sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = 12000;
-  so.noise = sigma;
-  so.seed = 41;
-  so.has_box = true;
-  so.box_min = Vec(-1.3, -1.3, -0.7);
-  so.box_max = Vec(1.3, 1.3, 0.3);
+  SampleOptions so =
+      testsupport::SampleInBox(12000, sigma, 41, Vec(-1.3, -1.3, -0.7), Vec(1.3, 1.3, 0.3));
   const SampledCloud sampled = SampleModel(truth, so);
   // Labels from the truth: bottom 0, side 1, top 2, tube 3 (within 4 sigma, normal matching).
   std::vector<int> labels;

@@ -14,6 +14,7 @@
 
 #include "datasets/generators/model_sampler.h"
 #include "fit/reconstruct/solid_reconstruction.h"
+#include "support/sample_in_box.h"
 #include "support/sign_agreement.h"
 
 namespace implicitfit {
@@ -55,13 +56,7 @@ TEST(MultiCutSeparation, SlabWithRoundedEdges) {
   const Vec box_lo(-2.1, -2.1, -0.3), box_hi(2.1, 2.1, 0.8);
   const double size = 2 * (a + h);
   const double sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = 12000;
-  so.noise = sigma;
-  so.seed = 41;
-  so.has_box = true;
-  so.box_min = box_lo;
-  so.box_max = box_hi;
+  SampleOptions so = testsupport::SampleInBox(12000, sigma, 41, box_lo, box_hi);
   const SampledCloud sampled = SampleModel(truth, so);
   // Scene: top 0, bottom 1, rounds 2-5 (x bars at y = -a, +a, then y bars at x = -a, +a),
   // corners 6-9; labels: the truth surface within 4 sigma whose outward normal matches.

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "datasets/generators/model_sampler.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -18,13 +19,13 @@ using Vec = Eigen::Vector3d;
 Model DomeOnSlab(const std::string& cut, double cut_z) {
   Model m;
   std::vector<int> faces;
-  const Vec normals[6] = {-Vec::UnitX(), Vec::UnitX(), -Vec::UnitY(),
+  const Vec normals[6] = {-Vec::UnitX(), Vec::UnitX(),  -Vec::UnitY(),
                           Vec::UnitY(),  -Vec::UnitZ(), Vec::UnitZ()};
   const double offsets[6] = {1, 1, 1, 1, 0.5, 0};
   for (int k = 0; k < 6; ++k)
-    faces.push_back(m.AddPrimitive(
-        NodeType::kPlane, {normals[k].x(), normals[k].y(), normals[k].z(), offsets[k]},
-        "p" + std::to_string(k)));
+    faces.push_back(m.AddPrimitive(NodeType::kPlane,
+                                   {normals[k].x(), normals[k].y(), normals[k].z(), offsets[k]},
+                                   "p" + std::to_string(k)));
   const int slab = m.AddOperator(NodeType::kIntersection, faces, 0.1, 0.1, 0);
   const int ball = m.AddPrimitive(NodeType::kSphere, {0, 0, 0, 0.6}, "p6");
   const int plane = m.AddPrimitive(NodeType::kPlane, {0, 0, -1, -cut_z}, cut);
@@ -35,13 +36,8 @@ Model DomeOnSlab(const std::string& cut, double cut_z) {
 
 TEST(SeparatorBridging, JoinsADomeCutOffItsSlabByAMisplacedSeparator) {
   const Model truth = DomeOnSlab("p4", -0.5);
-  SampleOptions so;
-  so.count = 6000;
-  so.noise = 0.004;
-  so.seed = 3;
-  so.has_box = true;
-  so.box_min = Vec(-1.2, -1.2, -0.7);
-  so.box_max = Vec(1.2, 1.2, 0.8);
+  SampleOptions so =
+      testsupport::SampleInBox(6000, 0.004, 3, Vec(-1.2, -1.2, -0.7), Vec(1.2, 1.2, 0.8));
   const PointCloud cloud = SampleModel(truth, so).cloud;
   SolidVerificationOptions vo;
   vo.num_threads = 2;
@@ -60,7 +56,7 @@ TEST(SeparatorBridging, JoinsADomeCutOffItsSlabByAMisplacedSeparator) {
   EXPECT_LT(model.Value(Vec(0, 0, 0.4)), 0);
   EXPECT_GT(model.Value(Vec(0, 0, 0.7)), 0);
   EXPECT_GT(model.Value(Vec(0, 0, -0.7)), 0);  // nothing below the slab
-  EXPECT_EQ(b.replaced[0].second, "p4");  // the bottom: the only plane that joins and verifies
+  EXPECT_EQ(b.replaced[0].second, "p4");       // the bottom: the only plane that joins and verifies
   EXPECT_EQ(RenameInExpression("(p6 & separator0) | (separator01 & p0)", "separator0", "p4"),
             "(p6 & p4) | (separator01 & p0)");
 }

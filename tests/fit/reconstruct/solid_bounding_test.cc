@@ -1,4 +1,5 @@
-// Separators and closures of `reconstruct` (fit/reconstruct/solid_bounding.h), on data with known truth.
+// Separators and closures of `reconstruct` (fit/reconstruct/solid_bounding.h), on data with known
+// truth.
 //   - BestStump against brute force over every threshold of every direction;
 //   - SeparateCells: a cell holding a certain outside sample is outside whatever its votes;
 //   - an open scan: a sharp box (half sizes 1, 0.7, 0.5) sampled without its bottom face gives a
@@ -23,6 +24,8 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/reconstruct/csg_separation.h"
 #include "fit/reconstruct/solid_reconstruction.h"
+#include "support/axis_box.h"
+#include "support/sample_in_box.h"
 #include "support/sign_agreement.h"
 
 namespace implicitfit {
@@ -87,31 +90,14 @@ TEST(CsgSeparation, CertainOutsideSampleWins) {
   EXPECT_EQ(sep.terms[0].outside, 0u);
 }
 
-Model SharpBox(const Vec& half) {
-  Model m;
-  std::vector<int> faces;
-  for (int a = 0; a < 3; ++a)
-    for (int s : {-1, 1}) {
-      Vec n = Vec::Zero();
-      n[a] = s;
-      faces.push_back(m.AddPrimitive(NodeType::kPlane, {n.x(), n.y(), n.z(), half[a]}));
-    }
-  m.SetRoot(m.AddOperator(NodeType::kIntersection, faces, 0.01, 0.01, 0));
-  return m;
-}
+Model SharpBox(const Vec& half) { return testsupport::AxisBox(half, 0.01, 0.01, 0); }
 
 TEST(SolidClosure, BoxScannedWithoutItsBottom) {
   const Vec half(1, 0.7, 0.5);
   const Model truth = SharpBox(half);
   const double size = 2 * half.maxCoeff();
   const double sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = 6000;
-  so.noise = sigma;
-  so.seed = 11;
-  so.has_box = true;
-  so.box_min = -1.2 * half;
-  so.box_max = 1.2 * half;
+  SampleOptions so = testsupport::SampleInBox(6000, sigma, 11, -1.2 * half, 1.2 * half);
   const SampledCloud sampled = SampleModel(truth, so);
   // The scan: every point but those of the bottom face (z = -0.5, outward normal -z).
   std::vector<Vec> points, normals;
@@ -179,13 +165,7 @@ TEST(SolidSeparator, BallOnStem) {
   truth.SetRoot(truth.AddOperator(NodeType::kUnion, {ball, stem}, 0.01, 0.01, 0));
   const Vec box_lo(-1, -1, -0.2), box_hi(1, 1, 2.5);
   const double sigma = 0.002 * (box_hi - box_lo).maxCoeff();
-  SampleOptions so;
-  so.count = 6000;
-  so.noise = sigma;
-  so.seed = 12;
-  so.has_box = true;
-  so.box_min = box_lo;
-  so.box_max = box_hi;
+  SampleOptions so = testsupport::SampleInBox(6000, sigma, 12, box_lo, box_hi);
   const SampledCloud sampled = SampleModel(truth, so);
   // Labels: the detected surface (ball 0, cylinder 1, foot 2) within 4 sigma with its normal.
   std::vector<int> labels;

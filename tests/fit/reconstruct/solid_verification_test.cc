@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "datasets/generators/model_sampler.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -29,8 +30,8 @@ int AddBox(Model* m, const Vec& half, const Vec& centre, const std::string& pref
   for (int a = 0; a < 3; ++a)
     for (int s : {-1, 1}) {
       const Vec n = s * Vec::Unit(a);
-      faces.push_back(AddPlane(m, n, n.dot(centre) + half[a],
-                               prefix + std::to_string(faces.size())));
+      faces.push_back(
+          AddPlane(m, n, n.dot(centre) + half[a], prefix + std::to_string(faces.size())));
     }
   return m->AddOperator(NodeType::kIntersection, faces, 0.1, 0.1, 0);
 }
@@ -42,13 +43,7 @@ Model BoxModel() {
 }
 
 PointCloud Sample(const Model& truth, const Vec& lo, const Vec& hi, int count = 4000) {
-  SampleOptions so;
-  so.count = count;
-  so.noise = 0.002 * (hi - lo).maxCoeff();
-  so.seed = 5;
-  so.has_box = true;
-  so.box_min = lo;
-  so.box_max = hi;
+  SampleOptions so = testsupport::SampleInBox(count, 0.002 * (hi - lo).maxCoeff(), 5, lo, hi);
   return SampleModel(truth, so).cloud;
 }
 

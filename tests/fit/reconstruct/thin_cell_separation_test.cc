@@ -1,7 +1,7 @@
 // A cell of the arrangement thinner than the inside/outside samples' fixed offset
-// (fit/reconstruct/offset_samples.h), the situation of Fit4CAD PC34's flange rim, in a generated solid with
-// known truth: a dome (sphere of centre (0, 0, -0.5) through the circle r = 1, z = 0.05) cut by
-// the cylinder r = 1 about z and standing on the plane z = 0. The cylinder bounds a rim 0.05
+// (fit/reconstruct/offset_samples.h), the situation of Fit4CAD PC34's flange rim, in a generated
+// solid with known truth: a dome (sphere of centre (0, 0, -0.5) through the circle r = 1, z = 0.05)
+// cut by the cylinder r = 1 about z and standing on the plane z = 0. The cylinder bounds a rim 0.05
 // high; the material it removes from the sphere is a sliver at most 0.0259 wide (at z = 0:
 // sqrt(R^2 - 0.25) - 1), thinner than t = 1% of the cloud's diagonal (0.029). With the fixed
 // offset, the rim's outside samples land beyond the sphere, the sliver's cell gets none and the
@@ -14,6 +14,7 @@
 
 #include "datasets/generators/model_sampler.h"
 #include "fit/reconstruct/solid_reconstruction.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -32,13 +33,7 @@ TEST(ThinCell, DomeWithNarrowRim) {
   const Vec box_lo(-1.2, -1.2, -0.2), box_hi(1.2, 1.2, 0.8);
   const double size = 2.0;  // the solid's largest extent
   const double sigma = 0.002 * size;
-  SampleOptions so;
-  so.count = 6000;
-  so.noise = sigma;
-  so.seed = 21;
-  so.has_box = true;
-  so.box_min = box_lo;
-  so.box_max = box_hi;
+  SampleOptions so = testsupport::SampleInBox(6000, sigma, 21, box_lo, box_hi);
   const SampledCloud sampled = SampleModel(truth, so);
   // Labels: sphere 0, cylinder 1, base 2: the truth surface within 4 sigma, normal matching.
   std::vector<int> labels;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "datasets/generators/model_sampler.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -28,13 +29,8 @@ int AddBox(Model* m, const Vec& half, const std::string& prefix) {
 PointCloud BoxCloud() {
   Model box;
   box.SetRoot(AddBox(&box, Vec(1, 0.7, 0.5), "p"));
-  SampleOptions so;
-  so.count = 4000;
-  so.noise = 0.004;
-  so.seed = 5;
-  so.has_box = true;
-  so.box_min = Vec::Constant(-1.5);
-  so.box_max = Vec::Constant(1.5);
+  SampleOptions so =
+      testsupport::SampleInBox(4000, 0.004, 5, Vec::Constant(-1.5), Vec::Constant(1.5));
   return SampleModel(box, so).cloud;
 }
 
@@ -46,8 +42,8 @@ TEST(UnsupportedRepair, FillsACavityAndCutsAFarPiece) {
     const Vec centre = cavity ? Vec(0.2, 0, 0) : Vec(3, 0, 0);
     const int ball =
         m.AddPrimitive(NodeType::kSphere, {centre.x(), centre.y(), centre.z(), 0.3}, "ball");
-    m.SetRoot(m.AddOperator(cavity ? NodeType::kDifference : NodeType::kUnion, {box, ball}, 0.1,
-                            0.1, 0));
+    m.SetRoot(
+        m.AddOperator(cavity ? NodeType::kDifference : NodeType::kUnion, {box, ball}, 0.1, 0.1, 0));
     SolidVerification v = VerifySolid(m, cloud.points, cloud.normals);
     ASSERT_FALSE(v.verified);
     ASSERT_FALSE(v.pieces_supported);

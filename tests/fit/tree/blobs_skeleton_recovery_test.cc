@@ -7,12 +7,14 @@
 
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/tree_fitter.h"
+#include "support/capsule.h"
 #include "support/cramer_rao.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using testsupport::Capsule;
 
 // Three Gaussian blobs with noise-free samples, started 0.05 off in every centre and 10% off in
 // every weight and width: the fit must land on the truth (centres within 1e-6 of the blob
@@ -53,19 +55,14 @@ TEST(BlobsRecovery, ThreeGaussianBlobsFromAPerturbedStart) {
 TEST(SkeletonOffsetRecovery, CapsuleEndPointsAndRadiusWithinTwoAndAHalfCramerRaoSpreads) {
   const Vec a(-0.5, 0.1, 0.0), b(0.6, -0.2, 0.3);
   const double radius = 0.3;
-  auto capsule = [](const Vec& p, const Vec& q, double r) {
-    Model m;
-    m.AddSkeletonOffset(SkeletonKind::kSegments, {p.x(), p.y(), p.z(), q.x(), q.y(), q.z()}, r);
-    return m;
-  };
   SampleOptions so;
   so.count = 5000;
   so.noise = 0.002;
   so.outlier_fraction = 0.2;
   so.seed = 14;
-  const SampledCloud s = SampleModel(capsule(a, b, radius), so);
+  const SampledCloud s = SampleModel(Capsule(a, b, radius), so);
   const TreeFitResult r =
-      FitModelTree(capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
+      FitModelTree(Capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
                    s.cloud.points, s.cloud.normals, TreeFitOptions{});
   ASSERT_TRUE(r.success) << r.message;
   const std::vector<double>& p = r.model.parameters();
@@ -74,7 +71,7 @@ TEST(SkeletonOffsetRecovery, CapsuleEndPointsAndRadiusWithinTwoAndAHalfCramerRao
   for (size_t i = 0; i < s.cloud.points.size(); ++i)
     if (!s.is_outlier[i]) inliers.push_back(s.cloud.points[i]);
   const auto residual = [&](const Eigen::VectorXd& d, const Vec& x) {
-    return capsule(a + d.segment<3>(0), b + d.segment<3>(3), radius + d[6]).Value(x);
+    return Capsule(a + d.segment<3>(0), b + d.segment<3>(3), radius + d[6]).Value(x);
   };
   const Eigen::MatrixXd cov = testsupport::CramerRaoCovariance(residual, 7, inliers, so.noise);
   const double sa = testsupport::Spread(cov, 0, 3), sb = testsupport::Spread(cov, 3, 3),

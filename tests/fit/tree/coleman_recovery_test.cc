@@ -7,6 +7,7 @@
 
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/tree_fitter.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -26,13 +27,8 @@ TEST(ColemanFeaturesRecovery, PlateauWidthDepthRadiusAndCoreRadiusWithinOnePerce
     m.AddColemanFeatures(core, rc, {0, 0, 0.2, w, d, r, 0.0});
     return m;
   };
-  SampleOptions so;
-  so.count = 4000;
-  so.noise = 0.0005;
-  so.seed = 8;
-  so.has_box = true;
-  so.box_min = Vec(-1.2, -1.2, -0.5);
-  so.box_max = Vec(1.2, 1.2, 1.6);
+  SampleOptions so =
+      testsupport::SampleInBox(4000, 0.0005, 8, Vec(-1.2, -1.2, -0.5), Vec(1.2, 1.2, 1.6));
   const SampledCloud s = SampleModel(plateau(0.4, 0.3, 0.25, 0.2), so);
   const TreeFitResult r = FitModelTree(plateau(0.44, 0.33, 0.22, 0.22), s.cloud.points,
                                        s.cloud.normals, TreeFitOptions{});
@@ -96,13 +92,8 @@ TEST(ColemanFeaturesRecovery, FeaturePointDoesNotDriftAlongItsFreeDirection) {
     m.AddColemanFeatures(core, rc, {f.x(), f.y(), f.z(), w, d, r, 0.0});
     return m;
   };
-  SampleOptions so;
-  so.count = 1500;
-  so.noise = 0.0005;
-  so.seed = 10;
-  so.has_box = true;
-  so.box_min = Vec(-0.2, -1.2, 0.0);
-  so.box_max = Vec(2.2, 1.2, 2.2);
+  SampleOptions so =
+      testsupport::SampleInBox(1500, 0.0005, 10, Vec(-0.2, -1.2, 0.0), Vec(2.2, 1.2, 2.2));
   const SampledCloud s = SampleModel(bump(0.4, 1.2 * axis, 0.3, 0.25, 0.2), so);
   // Start: 10% off in R_C, W, D, R, and the feature's direction 3 degrees off.
   const Vec start_dir = Eigen::AngleAxisd(3 * M_PI / 180, Vec::UnitY()) * axis;

@@ -1,5 +1,5 @@
-// fit --init on a "smoothing": "convex" blend (docs/maths.md LP-4 b): the tree fitter recovers the two
-// planes and the width w = delta of a rounded crease sampled from the truth; epsilon has no
+// fit --init on a "smoothing": "convex" blend (docs/maths.md LP-4 b): the tree fitter recovers the
+// two planes and the width w = delta of a rounded crease sampled from the truth; epsilon has no
 // block (its slot is unused).
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/tree_fitter.h"
 #include "fit/tree/tree_parameters.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -34,13 +35,7 @@ TEST(ConvexBlendFit, DeltaIsTheOnlyBlendBlock) {
 TEST(ConvexBlendFit, RecoversTwoPlanesAndTheWidthOfARoundedCrease) {
   const double w = 0.25;
   const Model truth = ConvexWedge(Vec(0, 0, 1), 0.0, Vec(1, 0, 0), 0.0, w);
-  SampleOptions so;
-  so.count = 3000;
-  so.noise = 0.002;
-  so.seed = 4;
-  so.has_box = true;
-  so.box_min = Vec(-1, -1, -1);
-  so.box_max = Vec(0.5, 1, 0.5);
+  SampleOptions so = testsupport::SampleInBox(3000, 0.002, 4, Vec(-1, -1, -1), Vec(0.5, 1, 0.5));
   const SampledCloud s = SampleModel(truth, so);
   const Vec n1 = Vec(0.05, 0.03, 1).normalized(), n2 = Vec(1, -0.04, 0.06).normalized();
   const Model init = ConvexWedge(n1, 0.03, n2, -0.02, 0.4);

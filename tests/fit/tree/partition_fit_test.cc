@@ -14,6 +14,7 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/partition_start.h"
 #include "fit/tree/tree_fitter.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -52,13 +53,7 @@ int CoreCell(const Vec& x, double eps) {
 TEST(PartitionFit, GridOfEighteenPlanesFromTheLinearStartRecoversEveryPlaneAndEpsilon) {
   const double epsilon = 0.15;
   const Model truth = Bipyramid(epsilon);
-  SampleOptions so;
-  so.count = 5000;
-  so.noise = 0.002;
-  so.seed = 13;
-  so.has_box = true;
-  so.box_min = Vec(-2, -2, -1.5);
-  so.box_max = Vec(2, 2, 1.5);
+  SampleOptions so = testsupport::SampleInBox(5000, 0.002, 13, Vec(-2, -2, -1.5), Vec(2, 2, 1.5));
   const SampledCloud s = SampleModel(truth, so);
 
   PartitionStartOptions po;

@@ -11,6 +11,7 @@
 
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/tree_fitter.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -51,13 +52,8 @@ Model Octagon(double epsilon, double turn_rad, double shift) {
 TEST(PartitionRecovery, OctagonOfNineCellsRecoversEveryLineAndEpsilon) {
   const double epsilon = 0.15;
   const Model truth = Octagon(epsilon, 0.0, 0.0);
-  SampleOptions so;
-  so.count = 5000;
-  so.noise = 0.002;
-  so.seed = 10;
-  so.has_box = true;
-  so.box_min = Vec(-1.5, -1.5, -1);
-  so.box_max = Vec(1.5, 1.5, 1);
+  SampleOptions so =
+      testsupport::SampleInBox(5000, 0.002, 10, Vec(-1.5, -1.5, -1), Vec(1.5, 1.5, 1));
   const SampledCloud s = SampleModel(truth, so);
   const TreeFitResult r = FitModelTree(Octagon(0.12, 3.0 * M_PI / 180.0, 0.05), s.cloud.points,
                                        s.cloud.normals, TreeFitOptions{});

@@ -5,9 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "datasets/meshing/model_mesher.h"
 #include "datasets/generators/model_sampler.h"
+#include "datasets/meshing/model_mesher.h"
 #include "fit/tree/tree_fitter.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -48,13 +49,7 @@ Model Sequence(double epsilon, double turn_rad, double shift) {
 TEST(PartitionSequenceRecovery, FourCellsOfThreeSeparatorsRecoverEveryLineAndEpsilon) {
   const double epsilon = 0.08;
   const Model truth = Sequence(epsilon, 0.0, 0.0);
-  SampleOptions so;
-  so.count = 5000;
-  so.noise = 0.002;
-  so.seed = 12;
-  so.has_box = true;
-  so.box_min = Vec(-2, -2, -1);
-  so.box_max = Vec(1.5, 1.5, 1);
+  SampleOptions so = testsupport::SampleInBox(5000, 0.002, 12, Vec(-2, -2, -1), Vec(1.5, 1.5, 1));
   const SampledCloud s = SampleModel(truth, so);
   double worst_sample = 0;
   for (size_t i = 0; i < s.cloud.size(); ++i) {  // noise 0.002: |f| / |grad f| within 5 sigma

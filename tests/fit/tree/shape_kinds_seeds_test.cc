@@ -2,9 +2,9 @@
 // the RMS over seeds of the error of a parameter group, divided by the mean numerical
 // Cramer-Rao spread of that group (tests/support/cramer_rao.h: exact distance of the TRUE model
 // at the inlier points, known sigma), must stay below kMultiple. The same figure is printed for
-// the standard deviations the fit reports (fit/tree/tree_covariance.h, from the fitted model and its
-// inliers), and the mean error over seeds in units of its standard error (bias check).
-// Each seed: 5000 points, sigma = 0.002, 20% outliers; start = truth perturbed as in
+// the standard deviations the fit reports (fit/tree/tree_covariance.h, from the fitted model and
+// its inliers), and the mean error over seeds in units of its standard error (bias check). Each
+// seed: 5000 points, sigma = 0.002, 20% outliers; start = truth perturbed as in
 // tests/fit/tree/model_kinds_recovery_test.cc; the tree fitter.
 #include <gtest/gtest.h>
 
@@ -16,6 +16,7 @@
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/tree_covariance.h"
 #include "fit/tree/tree_fitter.h"
+#include "support/capsule.h"
 #include "support/cramer_rao.h"
 #include "support/sanitized_build.h"
 
@@ -23,6 +24,7 @@ namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using testsupport::Capsule;
 using Quat = Eigen::Quaterniond;
 constexpr int kSeeds = 12;
 constexpr double kMultiple = 1.5;
@@ -141,24 +143,19 @@ TEST(ShapeKindsOverSeeds, BoxCentreAndSizesWithinCramerRao) {
 void CapsuleOverSeeds(double outlier_fraction) {
   const Vec a(-0.5, 0.1, 0.0), b(0.6, -0.2, 0.3);
   const double radius = 0.3;
-  auto capsule = [](const Vec& p, const Vec& q, double r) {
-    Model m;
-    m.AddSkeletonOffset(SkeletonKind::kSegments, {p.x(), p.y(), p.z(), q.x(), q.y(), q.z()}, r);
-    return m;
-  };
   std::printf("  capsule, %.0f%% outliers:\n", 100 * outlier_fraction);
   Group ends{"capsule end points", 0, 0, 0, {}, 0}, rad{"capsule radius", 0, 0, 0, {}, 0};
   for (int seed = 1; seed <= kSeeds; ++seed) {
     SampleOptions so = Options(200 + seed);
     so.outlier_fraction = outlier_fraction;
-    const SampledCloud s = SampleModel(capsule(a, b, radius), so);
+    const SampledCloud s = SampleModel(Capsule(a, b, radius), so);
     const TreeFitResult r =
-        FitModelTree(capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
+        FitModelTree(Capsule(a + Vec(0.03, -0.02, 0.03), b + Vec(-0.03, 0.03, 0.02), 1.1 * radius),
                      s.cloud.points, s.cloud.normals, TreeFitOptions{});
     ASSERT_TRUE(r.success) << r.message;
     const std::vector<double>& p = r.model.parameters();
     const auto residual = [&](const Eigen::VectorXd& d, const Vec& x) {
-      return capsule(a + d.segment<3>(0), b + d.segment<3>(3), radius + d[6]).Value(x);
+      return Capsule(a + d.segment<3>(0), b + d.segment<3>(3), radius + d[6]).Value(x);
     };
     const Eigen::MatrixXd cov = testsupport::CramerRaoCovariance(residual, 7, Inliers(s), 0.002);
     const std::vector<double> sd = ReportedSd(r, s.cloud.points);

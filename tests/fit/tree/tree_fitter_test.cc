@@ -1,6 +1,6 @@
 // fit --init on blended models: the truth is a smooth CSG tree, the cloud is sampled from it
-// (datasets/generators/model_sampler), the initial model is the truth perturbed; the fit must recover the
-// primitives and the blend's delta and epsilon.
+// (datasets/generators/model_sampler), the initial model is the truth perturbed; the fit must
+// recover the primitives and the blend's delta and epsilon.
 #include "fit/tree/tree_fitter.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include "datasets/clouds/cloud_file.h"
 #include "datasets/generators/model_sampler.h"
 #include "fit/tree/tree_parameters.h"
+#include "support/sample_in_box.h"
 
 namespace implicitfit {
 namespace {
@@ -48,13 +49,7 @@ TEST(TreeParameters, KeepZeroLessThanEpsilonAtMostDeltaForAnyFreeValues) {
 TEST(TreeFitter, RecoversTwoPlanesAndTheBlendOfARoundedCrease) {
   const double delta = 0.2, epsilon = 0.12;
   const Model truth = Wedge(Vec(0, 0, 1), 0.0, Vec(1, 0, 0), 0.0, delta, epsilon);
-  SampleOptions so;
-  so.count = 3000;
-  so.noise = 0.002;
-  so.seed = 3;
-  so.has_box = true;
-  so.box_min = Vec(-1, -1, -1);
-  so.box_max = Vec(0.5, 1, 0.5);
+  SampleOptions so = testsupport::SampleInBox(3000, 0.002, 3, Vec(-1, -1, -1), Vec(0.5, 1, 0.5));
   const SampledCloud s = SampleModel(truth, so);
   const Vec n1 = Vec(0.05, 0.03, 1).normalized(), n2 = Vec(1, -0.04, 0.06).normalized();
   const Model init = Wedge(n1, 0.03, n2, -0.02, 0.35, 0.2);

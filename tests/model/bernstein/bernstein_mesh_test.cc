@@ -1,6 +1,6 @@
-// The bernstein_mesh node (model/bernstein/bernstein_mesh.h) and its continuity rows and spline basis
-// (model/bernstein/bernstein_mesh_continuity.h), against independent expectations: the naive oracle
-// patch, exact polynomials, and the dimension table of docs/maths.md G-1.
+// The bernstein_mesh node (model/bernstein/bernstein_mesh.h) and its continuity rows and spline
+// basis (model/bernstein/bernstein_mesh_continuity.h), against independent expectations: the naive
+// oracle patch, exact polynomials, and the dimension table of docs/maths.md G-1.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -10,6 +10,7 @@
 #include "model/bernstein/bernstein_mesh_continuity.h"
 #include "model/file/model_json.h"
 #include "oracle/bernstein_oracle.h"
+#include "support/grid_locate_check.h"
 
 namespace implicitfit {
 namespace {
@@ -41,18 +42,8 @@ TEST(BernsteinMesh, KuhnSplitTilesEveryCubeAndLocatesPoints) {
     for (int i = 0; i < 3; ++i) e.col(i) = c[i] - c[3];
     EXPECT_NEAR(std::abs(e.determinant()), std::pow(g.cell, 3), 1e-12);
   }
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int n = 0; n < 2000; ++n) {
-    const Vec x = g.BoxMin() + (g.BoxMax() - g.BoxMin()).cwiseProduct(Vec(u(rng), u(rng), u(rng)));
-    double tau[4];
-    const long long t = g.Locate(x.data(), tau);
-    const Eigen::Vector4d ref = oracle::Barycentric(Corners(g, t), x);
-    for (int i = 0; i < 4; ++i) {
-      EXPECT_GE(tau[i], -1e-12);
-      EXPECT_NEAR(tau[i], ref[i], 1e-12);
-    }
-  }
+  testsupport::ExpectLocateMatchesOracle(
+      g, [&](long long t) { return Corners(g, t); }, 2000, 3);
 }
 
 TEST(BernsteinMesh, EvaluatesEachTetrahedronsPolynomialAndExtrapolatesOutside) {

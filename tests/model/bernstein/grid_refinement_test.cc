@@ -12,6 +12,7 @@
 #include "model/bernstein/bernstein_mesh_continuity.h"
 #include "model/file/model_json.h"
 #include "oracle/bernstein_oracle.h"
+#include "support/grid_locate_check.h"
 
 namespace implicitfit {
 namespace {
@@ -28,7 +29,11 @@ BernsteinGrid Base(int nx, int ny, int nz) {
 
 // A 2 x 1 x 1 grid with base cube 0 split and its child at octant 7 split again (levels 0-2,
 // hanging faces of both level steps and a 2:1 violation-free layout).
-const char kRefinedSplits[] = "1" "0000000" "100000000" "0";
+const char kRefinedSplits[] =
+    "1"
+    "0000000"
+    "100000000"
+    "0";
 BernsteinGrid Refined() {
   BernsteinGrid g = Base(2, 1, 1);
   g.refinement = RefinementFromSplits(g.cells, kRefinedSplits);
@@ -44,9 +49,9 @@ TEST(GridRefinement, SplitFlagsRoundTripAndBadFlagsAreRefused) {
   const std::array<int, 3> cells = {2, 1, 1};
   const std::string flags = "1000000001";  // wrong: the second cube's '1' has no children
   EXPECT_THROW(RefinementFromSplits(cells, flags), std::invalid_argument);
-  EXPECT_THROW(RefinementFromSplits(cells, "0"), std::invalid_argument);     // too few
-  EXPECT_THROW(RefinementFromSplits(cells, "000"), std::invalid_argument);   // too many
-  EXPECT_THROW(RefinementFromSplits(cells, "0x"), std::invalid_argument);    // not a flag
+  EXPECT_THROW(RefinementFromSplits(cells, "0"), std::invalid_argument);    // too few
+  EXPECT_THROW(RefinementFromSplits(cells, "000"), std::invalid_argument);  // too many
+  EXPECT_THROW(RefinementFromSplits(cells, "0x"), std::invalid_argument);   // not a flag
   const GridRefinement r = RefinementFromSplits(cells, "1000000000");
   EXPECT_EQ(r.leaves.size(), 9u);
   EXPECT_EQ(r.max_level, 1);
@@ -55,11 +60,12 @@ TEST(GridRefinement, SplitFlagsRoundTripAndBadFlagsAreRefused) {
   EXPECT_EQ(r.leaves[5], (std::array<int, 4>{1, 1, 0, 1}));
   EXPECT_EQ(r.leaves[8], (std::array<int, 4>{0, 1, 0, 0}));
   std::vector<int> parent;
-  const GridRefinement s = SplitLeaves(cells, r, std::vector<bool>{false, false, false, false,
-                                                                   false, false, false, false,
-                                                                   true},
-                                       &parent);
-  EXPECT_EQ(SplitsOf(s), "1000000001" "00000000");
+  const GridRefinement s = SplitLeaves(
+      cells, r, std::vector<bool>{false, false, false, false, false, false, false, false, true},
+      &parent);
+  EXPECT_EQ(SplitsOf(s),
+            "1000000001"
+            "00000000");
   EXPECT_EQ(parent.size(), 16u);
   EXPECT_EQ(parent[15], 8);
   EXPECT_EQ(parent[3], 3);
@@ -92,18 +98,8 @@ TEST(GridRefinement, LeavesTileTheBoxAndLocateFindsTheHoldingTetrahedron) {
   }
   const Vec ext = g.BoxMax() - g.BoxMin();
   EXPECT_NEAR(volume, ext.prod(), 1e-12);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int n = 0; n < 3000; ++n) {
-    const Vec x = g.BoxMin() + ext.cwiseProduct(Vec(u(rng), u(rng), u(rng)));
-    double tau[4];
-    const long long t = g.Locate(x.data(), tau);
-    const Eigen::Vector4d ref = oracle::Barycentric(Corners(g, t), x);
-    for (int i = 0; i < 4; ++i) {
-      EXPECT_GE(tau[i], -1e-12);
-      EXPECT_NEAR(tau[i], ref[i], 1e-12);
-    }
-  }
+  testsupport::ExpectLocateMatchesOracle(
+      g, [&](long long t) { return Corners(g, t); }, 3000, 5);
 }
 
 TEST(GridRefinement, ReexpressionGivesTheSamePolynomialOnAnotherTetrahedron) {
@@ -160,9 +156,8 @@ std::vector<FacePoint> InteriorFacePoints(const BernsteinGrid& g, std::mt19937* 
 
 double Value(const BernsteinGrid& g, int k, const Eigen::VectorXd& b, long long t, const Vec& x,
              Vec* gradient) {
-  return BernsteinPatch::Derivatives(k, g.TetrahedronOf(t),
-                                     b.data() + t * NumBernsteinControlPoints(k), x.data(),
-                                     gradient);
+  return BernsteinPatch::Derivatives(
+      k, g.TetrahedronOf(t), b.data() + t * NumBernsteinControlPoints(k), x.data(), gradient);
 }
 
 TEST(GridRefinement, C0ParametrizationIsContinuousAcrossHangingFaces) {
@@ -178,8 +173,8 @@ TEST(GridRefinement, C0ParametrizationIsContinuousAcrossHangingFaces) {
     int hanging = 0;
     for (const FacePoint& f : InteriorFacePoints(g, &rng)) {
       Vec g1, g2;
-      worst = std::max(worst, std::abs(Value(g, k, b, f.inner, f.x, &g1) -
-                                       Value(g, k, b, f.outer, f.x, &g2)));
+      worst = std::max(
+          worst, std::abs(Value(g, k, b, f.inner, f.x, &g1) - Value(g, k, b, f.outer, f.x, &g2)));
       hanging += g.LevelOf(f.inner) != g.LevelOf(f.outer);
     }
     EXPECT_GT(hanging, 20);

@@ -28,6 +28,7 @@
 #include "model/certificates/tangent_plane_test.h"
 #include "model/certificates/tree_certificate.h"
 #include "model/model.h"
+#include "support/random_round_leaf.h"
 
 namespace implicitfit {
 namespace {
@@ -51,24 +52,14 @@ int RandomConvexLeaf(std::mt19937& rng, Model* m) {
   std::uniform_real_distribution<double> u(-1.0, 1.0), r01(0.0, 1.0);
   auto dir = [&]() { return Vec(u(rng), u(rng), u(rng)).normalized(); };
   const Vec c = 0.3 * Vec(u(rng), u(rng), u(rng)), a = dir();
-  switch (static_cast<int>(r01(rng) * 8)) {
-    case 0:
-      return m->AddPrimitive(NodeType::kPlane, {a.x(), a.y(), a.z(), 0.3 + 0.5 * r01(rng)});
-    case 1:
-      return m->AddPrimitive(NodeType::kSphere, {c.x(), c.y(), c.z(), 0.6 + 0.5 * r01(rng)});
-    case 2:
-      return m->AddPrimitive(NodeType::kCylinder,
-                             {c.x(), c.y(), c.z(), a.x(), a.y(), a.z(), 0.5 + 0.4 * r01(rng)});
-    case 3: {
-      const Vec apex = c - 1.2 * a;
-      return m->AddPrimitive(NodeType::kCone, {apex.x(), apex.y(), apex.z(), a.x(), a.y(), a.z(),
-                                               0.3 + 0.5 * r01(rng)});
-    }
+  const int kind = static_cast<int>(r01(rng) * 8);
+  if (kind < 4) return testsupport::AddRandomRoundLeaf(kind, c, a, r01, rng, m);
+  switch (kind) {
     case 4: {
       const Eigen::Quaterniond q(r01(rng) + 0.1, u(rng), u(rng), u(rng));
-      return m->AddPrimitive(NodeType::kBox, {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(),
-                                              0.4 + 0.5 * r01(rng), 0.4 + 0.5 * r01(rng),
-                                              0.4 + 0.5 * r01(rng)});
+      return m->AddPrimitive(NodeType::kBox,
+                             {c.x(), c.y(), c.z(), q.w(), q.x(), q.y(), q.z(), 0.4 + 0.5 * r01(rng),
+                              0.4 + 0.5 * r01(rng), 0.4 + 0.5 * r01(rng)});
     }
     case 5:
       return m->AddPrimitive(NodeType::kParaboloid,
@@ -101,8 +92,8 @@ int RandomConvexTree(std::mt19937& rng, Model* m, int depth) {
   const int n = 2 + static_cast<int>(r01(rng) * 3);
   for (int i = 0; i < n; ++i) children.push_back(RandomConvexTree(rng, m, depth - 1));
   const double w = 0.05 + 0.3 * r01(rng);
-  const int op = m->AddOperator(NodeType::kIntersection, children, w, w,
-                                static_cast<int>(r01(rng) * 5));
+  const int op =
+      m->AddOperator(NodeType::kIntersection, children, w, w, static_cast<int>(r01(rng) * 5));
   m->mutable_nodes()[op].smoothing = BlendSmoothing::kConvex;
   return op;
 }
@@ -151,7 +142,7 @@ int RandomMixedTree(std::mt19937& rng, Model* m, int depth) {
     const int a = RandomMixedTree(rng, m, depth - 1), b = RandomMixedTree(rng, m, depth - 1);
     return m->AddComposite(NodeType::kMorph, {a, b}, {0.1 + 0.8 * r01(rng)});
   }
-  const NodeType type = pick < 0.3   ? NodeType::kUnion
+  const NodeType type = pick < 0.3    ? NodeType::kUnion
                         : pick < 0.45 ? NodeType::kDifference
                                       : NodeType::kIntersection;
   std::vector<int> children;
@@ -203,10 +194,11 @@ TEST(RandomTreeVerdict, MixedTreesNeverCalledConvexWhenSamplingShowsOtherwise) {
       EXPECT_EQ(midpoint_bad, 0) << "tree " << trial << " called a convex function";
     }
   }
-  std::printf("  mixed trees: %d of 4000 certified (%d convex functions), %d shown non-convex by "
-              "%d chords, violations among the certified: chords %d, midpoints %d\n",
-              certified, functions, shown_non_convex, checked_chords, chord_violations,
-              midpoint_violations);
+  std::printf(
+      "  mixed trees: %d of 4000 certified (%d convex functions), %d shown non-convex by "
+      "%d chords, violations among the certified: chords %d, midpoints %d\n",
+      certified, functions, shown_non_convex, checked_chords, chord_violations,
+      midpoint_violations);
   EXPECT_GT(certified, 100);
   EXPECT_GT(shown_non_convex, 500);
 }
@@ -233,7 +225,8 @@ TEST(RandomTreeVerdict, TenThousandConvexTreesCertifiedWithoutSamplingViolations
       TangentPlaneTestOptions o;
       o.segments = 400;
       o.seed = trial;
-      const TangentPlaneTestResult s = TangentPlaneTest(m, Vec(-1.5, -1.5, -1.5), Vec(1.5, 1.5, 1.5), o);
+      const TangentPlaneTestResult s =
+          TangentPlaneTest(m, Vec(-1.5, -1.5, -1.5), Vec(1.5, 1.5, 1.5), o);
       tangent_violations += s.violations;
       tangent_zero_points += s.zero_points;
     }
@@ -265,7 +258,8 @@ TEST(RandomTreeVerdict, EveryTreeJoiningACertifiedPatchToADisjointSolidIsRefused
     if (kind < 0.4) {
       other = m.AddPrimitive(NodeType::kSphere, {far.x(), far.y(), far.z(), 0.3 + 0.5 * r01(rng)});
     } else if (kind < 0.7) {
-      other = m.AddPrimitive(NodeType::kBox, {far.x(), far.y(), far.z(), 1, 0, 0, 0, 0.4, 0.3, 0.5});
+      other =
+          m.AddPrimitive(NodeType::kBox, {far.x(), far.y(), far.z(), 1, 0, 0, 0, 0.4, 0.3, 0.5});
     } else {
       CartesianQuadric p = q;
       p.b = -far;

@@ -1,5 +1,6 @@
-// Tree convexity certificate (model/certificates/tree_certificate.h, docs/maths.md LP-4 c) against the independent
-// sampling tangent-plane test (model/certificates/tangent_plane_test.h) on whole models over a box.
+// Tree convexity certificate (model/certificates/tree_certificate.h, docs/maths.md LP-4 c) against
+// the independent sampling tangent-plane test (model/certificates/tangent_plane_test.h) on whole
+// models over a box.
 #include "model/certificates/tree_certificate.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <random>
 
 #include "model/certificates/tangent_plane_test.h"
+#include "support/random_round_leaf.h"
 
 namespace implicitfit {
 namespace {
@@ -126,19 +128,8 @@ int RandomConvexNode(std::mt19937& rng, Model* m, int depth) {
   if (depth == 0 || r01(rng) < 0.3) {
     const int kind = static_cast<int>(r01(rng) * 6);
     const Vec c = 0.3 * Vec(u(rng), u(rng), u(rng)), a = dir();
+    if (kind < 4) return testsupport::AddRandomRoundLeaf(kind, c, a, r01, rng, m);
     switch (kind) {
-      case 0:
-        return m->AddPrimitive(NodeType::kPlane, {a.x(), a.y(), a.z(), 0.3 + 0.5 * r01(rng)});
-      case 1:
-        return m->AddPrimitive(NodeType::kSphere, {c.x(), c.y(), c.z(), 0.6 + 0.5 * r01(rng)});
-      case 2:
-        return m->AddPrimitive(NodeType::kCylinder,
-                               {c.x(), c.y(), c.z(), a.x(), a.y(), a.z(), 0.5 + 0.4 * r01(rng)});
-      case 3: {
-        const Vec apex = c - 1.2 * a;
-        return m->AddPrimitive(NodeType::kCone, {apex.x(), apex.y(), apex.z(), a.x(), a.y(), a.z(),
-                                                 0.3 + 0.5 * r01(rng)});
-      }
       case 4: {
         Vec b = dir();
         b = (b - b.dot(a) * a).normalized();

@@ -1,26 +1,25 @@
-// Blobs (docs/maths.md TB-2): the closed forms of docs/maths.md TB-2, derived from the kernels by hand.
+// Blobs (docs/maths.md TB-2): the closed forms of docs/maths.md TB-2, derived from the kernels by
+// hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "model/model.h"
 #include "model/file/model_json.h"
+#include "model/model.h"
+#include "support/model_document.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
 
-Model Load(const std::string& root) {
-  return ModelFromJson(nlohmann::json::parse(
-      R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}"));
-}
+using testsupport::ModelFromRoot;
 
 TEST(Blobs, OneGaussianBlobIsTheSphereOfRadiusSqrtLnAOverTOverB) {
   // a = e, b = 1, T = 1: the unit sphere.
   const Model unit =
-      Load(R"({"type": "blobs", "centers": [[1, 2, 3]], "weights": [2.718281828459045],
+      ModelFromRoot(R"({"type": "blobs", "centers": [[1, 2, 3]], "weights": [2.718281828459045],
       "widths": [1], "threshold": 1, "kernel": "gaussian"})");
   std::mt19937 rng(2);
   std::normal_distribution<double> g;
@@ -85,22 +84,26 @@ TEST(Blobs, CompactKernelsHaveHalfWidthSpheresAndExactSupport) {
 }
 
 TEST(Blobs, JsonFormOfTheNotesRoundTripsAndRefusesMismatchedLengths) {
-  const Model m = Load(R"({"type": "blobs", "centers": [[0, 0, 0], [1, 0, 0]], "weights": [2, -0.5],
+  const Model m =
+      ModelFromRoot(R"({"type": "blobs", "centers": [[0, 0, 0], [1, 0, 0]], "weights": [2, -0.5],
       "widths": [1.5, 2], "threshold": 1, "kernel": "h_n", "order": 4})");
   const Model back = ModelFromJson(ModelToJson(m));
   EXPECT_EQ(ModelToJson(back), ModelToJson(m));
   EXPECT_EQ(ModelToJson(m)["root"]["order"], 4);
   for (const Vec& x : {Vec(0.3, 0.2, 0.1), Vec(0.9, -0.4, 0.2)})
     EXPECT_EQ(back.Value(x), m.Value(x));
-  EXPECT_THROW(Load(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2, 1], "widths": [1],
+  EXPECT_THROW(
+      ModelFromRoot(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2, 1], "widths": [1],
       "threshold": 1, "kernel": "gaussian"})"),
-               ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2], "widths": [0],
+      ModelFormatError);
+  EXPECT_THROW(
+      ModelFromRoot(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2], "widths": [0],
       "threshold": 1, "kernel": "gaussian"})"),
-               ModelFormatError);
-  EXPECT_THROW(Load(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2], "widths": [1],
+      ModelFormatError);
+  EXPECT_THROW(
+      ModelFromRoot(R"({"type": "blobs", "centers": [[0, 0, 0]], "weights": [2], "widths": [1],
       "threshold": 1, "kernel": "metaball"})"),
-               ModelFormatError);
+      ModelFormatError);
 }
 
 }  // namespace

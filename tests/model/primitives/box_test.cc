@@ -1,13 +1,14 @@
 // Box (exact SDF) and complement: closed forms derived here from the geometry, the JSON form of
-// docs/maths.md TB-1, and the agreement with the sharp intersection of the six face planes (which is
-// exact inside, and a lower bound outside).
+// docs/maths.md TB-1, and the agreement with the sharp intersection of the six face planes (which
+// is exact inside, and a lower bound outside).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <random>
 
-#include "model/model.h"
 #include "model/file/model_json.h"
+#include "model/model.h"
+#include "support/model_document.h"
 
 namespace implicitfit {
 namespace {
@@ -46,10 +47,7 @@ TEST(Box, JsonFormOfTheNotesLoadsWithItsAxes) {
 }
 
 TEST(Box, RefusesBadFieldsNamingThePath) {
-  auto load = [](const std::string& root) {
-    return ModelFromJson(nlohmann::json::parse(
-        R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}"));
-  };
+  auto load = testsupport::ModelFromRoot;
   EXPECT_THROW(
       load(
           R"({"type": "box", "center": [0,0,0], "axes": [[1,0,0],[1,1,0]], "half_sizes": [1,1,1]})"),

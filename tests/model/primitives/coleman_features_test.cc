@@ -8,14 +8,18 @@
 #include <cmath>
 #include <random>
 
-#include "model/model.h"
 #include "model/file/model_json.h"
+#include "model/model.h"
 #include "support/derivative_check.h"
+#include "support/model_value_cost.h"
+#include "support/root_along_z.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using testsupport::ModelValueCost;
+using testsupport::RootAlongZ;
 constexpr double kRc = 0.4, kW = 0.3, kD = 0.25, kR = 0.2;
 
 Model Plateau(double flare) {
@@ -23,17 +27,6 @@ Model Plateau(double flare) {
   const int core = m.AddPrimitive(NodeType::kPlane, {0, 0, 1, 0});  // core z <= 0
   m.AddColemanFeatures(core, kRc, {0, 0, kRc / 2, kW, kD, kR, flare});
   return m;
-}
-
-// The root of f along z at (x, y) in [lo, hi] (f(lo) < 0 < f(hi)), by bisection.
-double RootAlongZ(const Model& m, double x, double y, double lo, double hi) {
-  EXPECT_LT(m.Value(Vec(x, y, lo)), 0.0);
-  EXPECT_GT(m.Value(Vec(x, y, hi)), 0.0);
-  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (m.Value(Vec(x, y, mid)) < 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
 }
 
 TEST(ColemanFeatures, FalloffIsTheSmoothstepOfAppendixA) {
@@ -67,18 +60,9 @@ TEST(ColemanFeatures, PlateauClosedFormForEveryFlare) {
   }
 }
 
-struct ValueCost {
-  const Model* model;
-  template <typename T>
-  bool operator()(T const* const* blocks, T* residual) const {
-    residual[0] = model->Evaluate(blocks[0], blocks[1]);
-    return true;
-  }
-};
-
 TEST(ColemanFeatures, JetDerivativesAgreeWithCentralDifferencesOnTheRamps) {
   const Model m = Plateau(0.5);
-  ceres::DynamicAutoDiffCostFunction<ValueCost, 4> cost(new ValueCost{&m});
+  ceres::DynamicAutoDiffCostFunction<ModelValueCost, 4> cost(new ModelValueCost{&m});
   cost.AddParameterBlock(static_cast<int>(m.parameters().size()));
   cost.AddParameterBlock(3);
   cost.SetNumResiduals(1);

@@ -13,17 +13,22 @@
 #include <cmath>
 #include <random>
 
-#include "model/model.h"
 #include "model/file/model_json.h"
+#include "model/model.h"
 #include "support/derivative_check.h"
+#include "support/model_value_cost.h"
+#include "support/root_along_z.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
 using nlohmann::json;
+using testsupport::ModelValueCost;
+using testsupport::RootAlongZ;
 
-// Written from docs/maths.md CO-2 (node fields) and CO-1 (the triangles skeleton), not from the code.
+// Written from docs/maths.md CO-2 (node fields) and CO-1 (the triangles skeleton), not from the
+// code.
 constexpr const char* kNotesModel = R"({
   "format": "implicitfit-model", "version": 1,
   "root": {
@@ -40,16 +45,6 @@ Model NotesModel(double flare) {
   json j = json::parse(kNotesModel);
   j["root"]["features"][0]["flare"] = flare;
   return ModelFromJson(j);
-}
-
-double RootAlongZ(const Model& m, double x, double y, double lo, double hi) {
-  EXPECT_LT(m.Value(Vec(x, y, lo)), 0.0);
-  EXPECT_GT(m.Value(Vec(x, y, hi)), 0.0);
-  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (m.Value(Vec(x, y, mid)) < 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
 }
 
 TEST(ColemanNotesForm, LoadsAsWrittenAndWritesTheSameForm) {
@@ -156,22 +151,13 @@ TEST(ColemanNotesForm, FlareZeroUsesTheTangentPlaneAndFlareOneTheNearestCorePoin
   EXPECT_GT(std::abs(a.Value(Vec(0, 0.42, 0.8)) - b.Value(Vec(0, 0.42, 0.8))), 0.05);
 }
 
-struct ValueCost {
-  const Model* model;
-  template <typename T>
-  bool operator()(T const* const* blocks, T* residual) const {
-    residual[0] = model->Evaluate(blocks[0], blocks[1]);
-    return true;
-  }
-};
-
 // With the skeleton's exact nearest point there is no differencing inside f: Jets agree with
 // central differences to 1e-7 on a curved core (a polyline), flare 0.3, on the ramps.
 TEST(ColemanNotesForm, JetDerivativesExactOnACurvedCore) {
   Model m;
   m.AddSkeletonOffsetWithFeatures(SkeletonKind::kPolyline, {-2, 0, 0, 0, 0, 0.3, 2, 0, 0}, kRc,
                                   {0.1, 0.0, 0.45, kW, kD, kR, 0.3});
-  ceres::DynamicAutoDiffCostFunction<ValueCost, 4> cost(new ValueCost{&m});
+  ceres::DynamicAutoDiffCostFunction<ModelValueCost, 4> cost(new ModelValueCost{&m});
   cost.AddParameterBlock(static_cast<int>(m.parameters().size()));
   cost.AddParameterBlock(3);
   cost.SetNumResiduals(1);

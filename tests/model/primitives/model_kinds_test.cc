@@ -1,5 +1,5 @@
-// The typed property suite (as tests/model/primitives/primitives_test.cc, manif style) for the node kinds
-// of issue 16: box, complement, morph, paraboloid, blobs, skeleton offsets (capsule, tube,
+// The typed property suite (as tests/model/primitives/primitives_test.cc, manif style) for the node
+// kinds of issue 16: box, complement, morph, paraboloid, blobs, skeleton offsets (capsule, tube,
 // triangle), soft partitions (grid, sequence), Coleman's features (docs/maths.md CO-2 form and
 // coleman_features). Each
 // kind builds its model and samples surface points from its own parametric form (written here,
@@ -14,14 +14,16 @@
 #include <random>
 #include <type_traits>
 
-#include "model/model.h"
 #include "model/file/model_json.h"
+#include "model/model.h"
 #include "support/derivative_check.h"
+#include "support/model_value_cost.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using testsupport::ModelValueCost;
 
 struct SurfacePoint {
   Vec x, n;
@@ -248,7 +250,8 @@ struct ColemanPlateauBase {
 };
 // docs/maths.md CO-2's own JSON form: the features on a skeleton_offset in field mode, the core a
 // large triangle in z = 0 (a surface skeleton: d = |z| above it, as the half-space's d = z).
-// The nearest core point is exact (model/primitives/skeleton_offset.h): Jets match to 1e-7 like every kind.
+// The nearest core point is exact (model/primitives/skeleton_offset.h): Jets match to 1e-7 like
+// every kind.
 struct ColemanSkeletonKind : ColemanPlateauBase {
   static Model Build() {
     Model m;
@@ -395,18 +398,8 @@ TYPED_TEST(KindProperties, ValueAlongTheNormalIsTheOffsetForDistances) {
   }
 }
 
-// f as a Ceres cost of (all parameters, point).
-struct ValueCost {
-  const Model* model;
-  template <typename T>
-  bool operator()(T const* const* blocks, T* residual) const {
-    residual[0] = model->Evaluate(blocks[0], blocks[1]);
-    return true;
-  }
-};
-
 TYPED_TEST(KindProperties, JetDerivativesAgreeWithNumericDifferentiation) {
-  ceres::DynamicAutoDiffCostFunction<ValueCost, 4> cost(new ValueCost{&this->model_});
+  ceres::DynamicAutoDiffCostFunction<ModelValueCost, 4> cost(new ModelValueCost{&this->model_});
   cost.AddParameterBlock(static_cast<int>(this->model_.parameters().size()));
   cost.AddParameterBlock(3);
   cost.SetNumResiduals(1);

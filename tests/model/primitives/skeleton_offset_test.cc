@@ -4,23 +4,21 @@
 
 #include <random>
 
-#include "model/model.h"
 #include "model/file/model_json.h"
+#include "model/model.h"
+#include "support/model_document.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
 
-Model Load(const std::string& root) {
-  return ModelFromJson(nlohmann::json::parse(
-      R"({"format": "implicitfit-model", "version": 1, "root": )" + root + "}"));
-}
+using testsupport::ModelFromRoot;
 
 TEST(SkeletonOffset, SinglePointIsTheSphereBitForBit) {
   Model sphere;
   sphere.AddPrimitive(NodeType::kSphere, {0.3, -0.7, 1.1, 0.9});
-  const Model point = Load(
+  const Model point = ModelFromRoot(
       R"({"type": "skeleton_offset", "skeleton": {"points": [[0.3, -0.7, 1.1]]}, "radius": 0.9})");
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> u(-3, 3);
@@ -33,7 +31,7 @@ TEST(SkeletonOffset, SinglePointIsTheSphereBitForBit) {
 
 TEST(SkeletonOffset, CapsuleDistancesInClosedForm) {
   // Segment from (0,0,0) to (0,0,2), radius 0.5.
-  const Model m = Load(
+  const Model m = ModelFromRoot(
       R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [0, 0, 2]]]}, "radius": 0.5})");
   EXPECT_DOUBLE_EQ(m.Value(Vec(3, 4, 1)), 5.0 - 0.5);    // beside the segment: radial distance
   EXPECT_DOUBLE_EQ(m.Value(Vec(0, 0, 3)), 1.0 - 0.5);    // beyond the end cap
@@ -42,10 +40,10 @@ TEST(SkeletonOffset, CapsuleDistancesInClosedForm) {
 }
 
 TEST(SkeletonOffset, PolylineIsTheUnionOfItsSegmentCapsules) {
-  const Model poly = Load(
+  const Model poly = ModelFromRoot(
       R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]}, "radius": 0.2})");
   const Model segs =
-      Load(R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [1, 0, 0]],
+      ModelFromRoot(R"({"type": "skeleton_offset", "skeleton": {"segments": [[[0, 0, 0], [1, 0, 0]],
       [[1, 0, 0], [1, 1, 0]], [[1, 1, 0], [1, 1, 1]]]}, "radius": 0.2})");
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-1, 2);
@@ -66,28 +64,32 @@ TEST(SkeletonOffset, PolylineIsTheUnionOfItsSegmentCapsules) {
 }
 
 TEST(SkeletonOffset, RefusesEmptyOrAmbiguousSkeletons) {
-  EXPECT_THROW(Load(R"({"type": "skeleton_offset", "skeleton": {"points": []}, "radius": 1})"),
-               ModelFormatError);
   EXPECT_THROW(
-      Load(R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0]]}, "radius": 1})"),
+      ModelFromRoot(R"({"type": "skeleton_offset", "skeleton": {"points": []}, "radius": 1})"),
       ModelFormatError);
   EXPECT_THROW(
-      Load(
+      ModelFromRoot(
+          R"({"type": "skeleton_offset", "skeleton": {"polyline": [[0, 0, 0]]}, "radius": 1})"),
+      ModelFormatError);
+  EXPECT_THROW(
+      ModelFromRoot(
           R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]], "polyline": [[0, 0, 0], [1, 0, 0]]}, "radius": 1})"),
       ModelFormatError);
   EXPECT_THROW(
-      Load(R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]]}, "radius": -1})"),
+      ModelFromRoot(
+          R"({"type": "skeleton_offset", "skeleton": {"points": [[0, 0, 0]]}, "radius": -1})"),
       ModelFormatError);
   // Triangles (docs/maths.md CO-1's surface skeleton) load; a triangle needs three corners, and an
   // unknown skeleton kind is refused.
-  EXPECT_NO_THROW(Load(
+  EXPECT_NO_THROW(ModelFromRoot(
       R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}, "radius": 1})"));
   EXPECT_THROW(
-      Load(
+      ModelFromRoot(
           R"({"type": "skeleton_offset", "skeleton": {"triangles": [[[0, 0, 0], [1, 0, 0]]]}, "radius": 1})"),
       ModelFormatError);
   EXPECT_THROW(
-      Load(R"({"type": "skeleton_offset", "skeleton": {"surfaces": [[0, 0, 0]]}, "radius": 1})"),
+      ModelFromRoot(
+          R"({"type": "skeleton_offset", "skeleton": {"surfaces": [[0, 0, 0]]}, "radius": 1})"),
       ModelFormatError);
 }
 

@@ -9,22 +9,14 @@
 #include "model/file/model_json.h"
 #include "model/model.h"
 #include "model/primitives/surface_cord.h"
+#include "support/root_along_z.h"
 
 namespace implicitfit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using testsupport::RootAlongZ;
 constexpr double kRc = 0.4, kW = 0.3, kD = 0.25, kR = 0.2;
-
-double RootAlongZ(const Model& m, double x, double y, double lo, double hi) {
-  EXPECT_LT(m.Value(Vec(x, y, lo)), 0.0);
-  EXPECT_GT(m.Value(Vec(x, y, hi)), 0.0);
-  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (m.Value(Vec(x, y, mid)) < 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
 
 Model Ridge(double flare) {
   Model m;
