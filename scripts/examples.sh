@@ -3,7 +3,7 @@
 # /opt/implicitfit, and fails if any file lands outside <tmp>/root/opt/implicitfit (an absolute
 # install destination, e.g. a Python site-packages); then builds examples/ as a separate
 # consumer project that declares only LANGUAGES CXX against that prefix (find_package(implicitfit),
-# implicitfit::implicitfit) and runs the four examples. .ci/run calls it; it fails if any step
+# implicitfit::implicitfit) and runs the five examples (every_job: every job's public header). .ci/run calls it; it fails if any step
 # fails. IMPLICITFIT_SANITIZE=ON: the sanitized build (./build-asan), whose package passes the
 # sanitizer link flags on.
 set -euo pipefail
@@ -36,4 +36,5 @@ cmake --build "$work/examples-build" -j "$(nproc)"
 "$work/examples-build/convex_patch"
 "$work/examples-build/smooth_csg" "$work/part.json"
 "$work/examples-build/mesh_and_sample" "$work/sphere.ply"
-echo "examples: all four built against the installed package (LANGUAGES CXX) and ran" >&2
+"$work/examples-build/every_job"  # sample, detect, reconstruct, mesh, design, patch mesh
+echo "examples: all five built against the installed package (LANGUAGES CXX) and ran" >&2
