@@ -150,39 +150,37 @@ GeneratedScene ScaleScene() {
   return GenerateScene(o);
 }
 
-int main(int argc, char** argv) {
-  bool quick = false, cgal = true;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--scale")) {
-      const GeneratedScene g = ScaleScene();
-      Case c{"generated scene, 10^6 points", g.cloud, g.labels, g.kinds};
-      const Row r = RunImplicitfit(c);
-      Print(c.name, c.cloud.size(), "implicitfit", r);
-      return 0;
-    }
-    if (!std::strcmp(argv[i], "--scale-scene") && i + 1 < argc) {
-      const std::string dir = argv[i + 1];
-      const GeneratedScene g = ScaleScene();
-      WritePlyFile(g.cloud, dir + "/scene_1e6.ply");
-      WriteTruthFile(g.labels, g.kinds, dir + "/scene_1e6.truth");
-      std::printf("%s/scene_1e6.ply: %zu points\n", dir.c_str(), g.cloud.size());
-      return 0;
-    }
-    if (!std::strcmp(argv[i], "--cgal") && i + 2 < argc) {
-      Case c;
-      c.name = argv[i + 1];
-      c.cloud = ReadCloudFile(argv[i + 1]);
-      const TruthLabels t = ReadTruthFile(argv[i + 2], static_cast<long>(c.cloud.size()));
-      c.labels = t.labels;
-      c.kinds = t.kinds;
-      Print(c.name, c.cloud.size(), "CGAL defaults", RunCgal(c, {}));
-      return 0;
-    }
-    if (!std::strcmp(argv[i], "--quick")) quick = true;
-    if (!std::strcmp(argv[i], "--no-cgal")) cgal = false;
-  }
-  const std::string data = IMPLICITFIT_SHARED_DATA;
-  std::vector<Case> cases;
+namespace {
+
+// --scale: detection on the 10^6-point scene, one implicitfit row.
+void RunScale() {
+  const GeneratedScene g = ScaleScene();
+  Case c{"generated scene, 10^6 points", g.cloud, g.labels, g.kinds};
+  const Row r = RunImplicitfit(c);
+  Print(c.name, c.cloud.size(), "implicitfit", r);
+}
+
+// --scale-scene DIR: the 10^6-point scene and its truth, written for bench/detect_scale.sh.
+void WriteScaleScene(const std::string& dir) {
+  const GeneratedScene g = ScaleScene();
+  WritePlyFile(g.cloud, dir + "/scene_1e6.ply");
+  WriteTruthFile(g.labels, g.kinds, dir + "/scene_1e6.truth");
+  std::printf("%s/scene_1e6.ply: %zu points\n", dir.c_str(), g.cloud.size());
+}
+
+// --cgal CLOUD TRUTH: CGAL's defaults on a cloud file, scored against a truth file.
+void RunCgalOnFile(const char* cloud, const char* truth) {
+  Case c;
+  c.name = cloud;
+  c.cloud = ReadCloudFile(cloud);
+  const TruthLabels t = ReadTruthFile(truth, static_cast<long>(c.cloud.size()));
+  c.labels = t.labels;
+  c.kinds = t.kinds;
+  Print(c.name, c.cloud.size(), "CGAL defaults", RunCgal(c, {}));
+}
+
+// The Fit4CAD clouds with estimated normals and (unless quick) with the truth's normals.
+void AddFit4Cad(const std::string& data, bool quick, std::vector<Case>* cases) {
   for (const std::string name : {"test_PC33", "test_PC34", "test_PC35", "test_PC21", "train_PC124",
                                  "train_PC131", "train_PC145", "train_PC155"}) {
     const std::string base = data + "/fit4cad/fit4cad_" + name;
@@ -195,30 +193,50 @@ int main(int argc, char** argv) {
     c.kinds = ReadFit4CadKinds(base + "/" + name + "_implicit.txt");
     EnsureOrientedNormals(&c.cloud);
     c.name = name + " (est. normals)";
-    cases.push_back(c);
+    cases->push_back(c);
     Case t = c;
     t.name = name + " (truth normals)";
     t.cloud.normals =
         TruthNormals(c.cloud, c.labels, c.kinds,
                      ReadFit4CadCoefficients(base + "/" + name + "_implicit.txt"), c.cloud.normals);
     EnsureOrientedNormals(&t.cloud);
-    if (!quick) cases.push_back(t);
+    if (!quick) cases->push_back(t);
   }
-  {
-    const std::string path = data + "/cgal/cgal_ball_icosahedron_20planes_labeled.ply";
-    if (std::ifstream(path)) {
-      Case c;
-      c.name = "CGAL icosahedron";
-      c.cloud = ReadCloudFile(path);
-      EnsureOrientedNormals(&c.cloud);
-      c.labels = ReadPlyIntProperty(path, "segment_index");
-      c.kinds.assign(20, NodeType::kPlane);
-      cases.push_back(c);
-    }
+}
+
+// CGAL's labelled icosahedron (20 planes, normals estimated), when present.
+void AddIcosahedron(const std::string& data, std::vector<Case>* cases) {
+  const std::string path = data + "/cgal/cgal_ball_icosahedron_20planes_labeled.ply";
+  if (!std::ifstream(path)) return;
+  Case c;
+  c.name = "CGAL icosahedron";
+  c.cloud = ReadCloudFile(path);
+  EnsureOrientedNormals(&c.cloud);
+  c.labels = ReadPlyIntProperty(path, "segment_index");
+  c.kinds.assign(20, NodeType::kPlane);
+  cases->push_back(c);
+}
+
+// The spheres (x, y, z, r) of reference_spheres.txt listed for files whose name contains `stem`.
+std::vector<Eigen::Vector4d> ReferenceSpheres(std::ifstream& ref, const std::string& stem) {
+  std::vector<Eigen::Vector4d> spheres;
+  for (std::string line; std::getline(ref, line);) {
+    char f[256];
+    double cx, cy, cz, r;
+    if (line.empty() || line[0] == '#' ||
+        std::sscanf(line.c_str(), "%255s %lf %lf %lf %lf", f, &cx, &cy, &cz, &r) != 5)
+      continue;
+    const std::string fs = f;
+    if (fs.find(stem) != std::string::npos) spheres.emplace_back(cx, cy, cz, r);
   }
-  // CGAL's ten spheres and PCL's sphere cap: labels from the reference spheres fitted to them
-  // (cgal/reference_spheres.txt: algebraic fits, RMS <= 3e-7; a point belongs to the sphere it
-  // lies on within 1e-4 of the cloud's diagonal, -1 otherwise). Normals estimated.
+  return spheres;
+}
+
+// CGAL's ten spheres and PCL's sphere cap, labelled by reference spheres, normals estimated.
+void AddSphereClouds(const std::string& data, std::vector<Case>* cases) {
+  // Labels from the reference spheres fitted to them (cgal/reference_spheres.txt: algebraic fits,
+  // RMS <= 3e-7; a point belongs to the sphere it lies on within 1e-4 of the cloud's diagonal, -1
+  // otherwise).
   for (const auto& [file, name] :
        {std::pair<std::string, std::string>{"cgal/cgal_spheres_10.ply", "CGAL 10 spheres"},
         {"pcl/pcl_cturtle_sphere_cap_r2.ply", "PCL sphere cap (cturtle)"}}) {
@@ -226,16 +244,7 @@ int main(int argc, char** argv) {
     std::ifstream ref(data + "/cgal/reference_spheres.txt");
     if (!std::ifstream(path) || !ref) continue;
     const std::string stem = file.substr(file.find('/') + 1, file.rfind('.') - file.find('/') - 1);
-    std::vector<Eigen::Vector4d> spheres;
-    for (std::string line; std::getline(ref, line);) {
-      char f[256];
-      double cx, cy, cz, r;
-      if (line.empty() || line[0] == '#' ||
-          std::sscanf(line.c_str(), "%255s %lf %lf %lf %lf", f, &cx, &cy, &cz, &r) != 5)
-        continue;
-      const std::string fs = f;
-      if (fs.find(stem) != std::string::npos) spheres.emplace_back(cx, cy, cz, r);
-    }
+    const std::vector<Eigen::Vector4d> spheres = ReferenceSpheres(ref, stem);
     if (spheres.empty()) continue;
     Case c;
     c.name = name;
@@ -249,58 +258,111 @@ int main(int argc, char** argv) {
         if (std::abs((c.cloud.points[i] - spheres[k].head<3>()).norm() - spheres[k][3]) < tol)
           c.labels[i] = static_cast<int>(k);
     c.kinds.assign(spheres.size(), NodeType::kSphere);
-    cases.push_back(c);
+    cases->push_back(c);
   }
+}
+
+// Every cloud of the table, in its order (quick: no truth-normal Fit4CAD rows, one scene).
+std::vector<Case> MakeCases(bool quick) {
+  const std::string data = IMPLICITFIT_SHARED_DATA;
+  std::vector<Case> cases;
+  AddFit4Cad(data, quick, &cases);
+  AddIcosahedron(data, &cases);
+  AddSphereClouds(data, &cases);
   for (unsigned seed = 1; seed <= (quick ? 1u : 3u); ++seed) {
     GeneratedSceneOptions o;
     o.seed = seed;
     GeneratedScene g = GenerateScene(o);
     cases.push_back({"generated scene " + std::to_string(seed), g.cloud, g.labels, g.kinds});
   }
+  return cases;
+}
 
+// CGAL's best (recall, then precision) over the 2 x 2 grid of epsilon and cluster_epsilon.
+Row CgalBestOfGrid(const Case& c) {
+  Row best;
+  bool first = true;
+  for (double eps : {0.003, 0.01})
+    for (double cluster : {0.01, 0.03})
+      for (double min_points : {0.005}) {
+        implicitfit_bench::CgalParameters p;
+        p.defaults = false;
+        p.max_seconds = 10.0;
+        p.epsilon_fraction = eps;
+        p.cluster_epsilon_fraction = cluster;
+        p.min_points_fraction = min_points;
+        const Row r = RunCgal(c, p);
+        if (first || r.m.recovered > best.m.recovered ||
+            (r.m.recovered == best.m.recovered &&
+             r.m.precise * best.m.detected_counted > best.m.precise * r.m.detected_counted))
+          best = r, first = false;
+      }
+  return best;
+}
+
+// The summary's sums over the clouds.
+struct Totals {
+  double seconds_ours = 0, seconds_cgal = 0;
+  int rec_ours = 0, rec_cgal = 0, rec_grid = 0, truth = 0;
+};
+
+// A cloud's rows: implicitfit, then (with cgal) CGAL's defaults and its best of the grid.
+void RunCase(const Case& c, bool cgal, Totals* totals) {
+  const Row ours = RunImplicitfit(c);
+  Print(c.name, c.cloud.size(), "implicitfit", ours);
+  totals->seconds_ours += ours.seconds;
+  totals->rec_ours += ours.m.recovered;
+  totals->truth += ours.m.truth_counted;
+  if (!cgal) return;
+  implicitfit_bench::CgalParameters defaults;
+  const Row d = RunCgal(c, defaults);
+  Print(c.name, c.cloud.size(), "CGAL defaults", d);
+  totals->seconds_cgal += d.seconds;
+  totals->rec_cgal += d.m.recovered;
+  const Row best = CgalBestOfGrid(c);
+  Print(c.name, c.cloud.size(), "CGAL best of grid", best);
+  totals->rec_grid += best.m.recovered;
+}
+
+// The lines under the table: recovered primitives and detection time per method.
+void PrintSummary(const Totals& t, bool cgal) {
+  std::printf("\nrecovered ground-truth primitives: implicitfit %d/%d", t.rec_ours, t.truth);
+  if (cgal)
+    std::printf(", CGAL defaults %d/%d, CGAL best of grid %d/%d", t.rec_cgal, t.truth, t.rec_grid,
+                t.truth);
+  std::printf("\ntotal detection time: implicitfit %.2f s", t.seconds_ours);
+  if (cgal) std::printf(", CGAL defaults %.2f s", t.seconds_cgal);
+  std::printf("\n");
+}
+
+}  // namespace
+
+// The single-run modes (--scale, --scale-scene, --cgal) when asked, else the table and summary.
+int main(int argc, char** argv) {
+  bool quick = false, cgal = true;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--scale")) {
+      RunScale();
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--scale-scene") && i + 1 < argc) {
+      WriteScaleScene(argv[i + 1]);
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--cgal") && i + 2 < argc) {
+      RunCgalOnFile(argv[i + 1], argv[i + 2]);
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--quick")) quick = true;
+    if (!std::strcmp(argv[i], "--no-cgal")) cgal = false;
+  }
+  const std::vector<Case> cases = MakeCases(quick);
   std::printf(
       "| cloud | points | method | recall | precision | mean IoU | kind acc. | coverage | param. "
       "err. | time (s) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  double total_ours = 0, total_cgal = 0;
-  int rec_ours = 0, rec_cgal = 0, rec_grid = 0, truth = 0;
-  for (const Case& c : cases) {
-    const Row ours = RunImplicitfit(c);
-    Print(c.name, c.cloud.size(), "implicitfit", ours);
-    total_ours += ours.seconds;
-    rec_ours += ours.m.recovered;
-    truth += ours.m.truth_counted;
-    if (!cgal) continue;
-    implicitfit_bench::CgalParameters defaults;
-    const Row d = RunCgal(c, defaults);
-    Print(c.name, c.cloud.size(), "CGAL defaults", d);
-    total_cgal += d.seconds;
-    rec_cgal += d.m.recovered;
-    Row best;
-    bool first = true;
-    for (double eps : {0.003, 0.01})
-      for (double cluster : {0.01, 0.03})
-        for (double min_points : {0.005}) {
-          implicitfit_bench::CgalParameters p;
-          p.defaults = false;
-          p.max_seconds = 10.0;
-          p.epsilon_fraction = eps;
-          p.cluster_epsilon_fraction = cluster;
-          p.min_points_fraction = min_points;
-          const Row r = RunCgal(c, p);
-          if (first || r.m.recovered > best.m.recovered ||
-              (r.m.recovered == best.m.recovered &&
-               r.m.precise * best.m.detected_counted > best.m.precise * r.m.detected_counted))
-            best = r, first = false;
-        }
-    Print(c.name, c.cloud.size(), "CGAL best of grid", best);
-    rec_grid += best.m.recovered;
-  }
-  std::printf("\nrecovered ground-truth primitives: implicitfit %d/%d", rec_ours, truth);
-  if (cgal)
-    std::printf(", CGAL defaults %d/%d, CGAL best of grid %d/%d", rec_cgal, truth, rec_grid, truth);
-  std::printf("\ntotal detection time: implicitfit %.2f s", total_ours);
-  if (cgal) std::printf(", CGAL defaults %.2f s", total_cgal);
-  std::printf("\n");
+  Totals totals;
+  for (const Case& c : cases) RunCase(c, cgal, &totals);
+  PrintSummary(totals, cgal);
   return 0;
 }

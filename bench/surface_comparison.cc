@@ -240,124 +240,233 @@ void AddFit4Cad(const std::string& part, std::vector<Case>* cases) {
   cases->push_back(std::move(c));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line (top comment); the MeshFitOptions ones in `fit`, the rest beside it.
+struct Options {
   int points = 20000, cells = 0, degree = 3, scan_cells = -1;
   std::vector<int> scan_degrees = {4, 5};
-  implicitfit::MeshFitOptions defaults;  // --far-field-ramp r, --far-field-ramp-power p
-  double ramp = defaults.far_field_ramp, ramp_power = defaults.far_field_ramp_power;
-  bool winding = defaults.far_field_winding;
-  double relaxation = defaults.far_field_relaxation, floor = defaults.far_field_floor;
-  int guard_samples = defaults.sign_guard_samples;
-  std::string only;      // run only the clouds whose name contains this
-  std::string save_dir;  // write the meshes here when given
+  implicitfit::MeshFitOptions fit;  // far field, sign guard, adaptive refinement (step 2)
+  std::string only;                 // run only the clouds whose name contains this
+  std::string save_dir;             // write the meshes here when given
   unsigned seed = 1;
   bool true_normals = false;  // generated CAD-like solids: the sampler's normals, not estimated
-  implicitfit::MeshFitOptions adaptive;  // the adaptive-refinement options (MeshFitOptions)
-  int mesh_cells = 128;                  // mesher: box / mesh_cells
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--points"))
-      points = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seed"))
-      seed = static_cast<unsigned>(std::atoi(argv[i + 1]));
-    else if (!std::strcmp(argv[i], "--cells"))
-      cells = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--degree"))
-      degree = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--scan-degree")) {
-      scan_degrees.clear();  // a comma-separated list; 0: none
-      for (const char* p = argv[i + 1]; *p;) {
-        char* end = nullptr;
-        const long k = std::strtol(p, &end, 10);
-        if (end == p) break;
-        if (k > 0) scan_degrees.push_back(static_cast<int>(k));
-        p = *end == ',' ? end + 1 : end;
-      }
-    } else if (!std::strcmp(argv[i], "--scan-cells"))
-      scan_cells = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--far-field-ramp"))
-      ramp = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--far-field-ramp-power"))
-      ramp_power = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--far-field-relaxation"))
-      relaxation = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--far-field-floor"))
-      floor = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--sign-guard-samples"))
-      guard_samples = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--only"))
-      only = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--save-meshes"))
-      save_dir = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--tangent-plane-signs"))
-      winding = std::atoi(argv[i + 1]) == 0;
-    else if (!std::strcmp(argv[i], "--true-normals"))
-      true_normals = std::atoi(argv[i + 1]) != 0;
-    else if (!std::strcmp(argv[i], "--adaptive"))
-      adaptive.adaptive = std::atoi(argv[i + 1]) != 0;
-    else if (!std::strcmp(argv[i], "--max-levels"))
-      adaptive.max_levels = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--sharp"))
-      adaptive.sharp_features = std::atoi(argv[i + 1]) != 0;
-    else if (!std::strcmp(argv[i], "--feature-angle"))
-      adaptive.feature_angle_deg = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--refine-factor"))
-      adaptive.refine_factor = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--min-leaf-spacings"))
-      adaptive.min_leaf_spacings = std::atof(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--max-unknowns"))
-      adaptive.max_unknowns = std::atoll(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--mesh-cells"))
-      mesh_cells = std::atoi(argv[i + 1]);
+  int mesh_cells = 128;       // mesher: box / mesh_cells
+};
+
+// --scan-degree's comma-separated list of degrees (0: none).
+std::vector<int> ParseDegrees(const char* list) {
+  std::vector<int> degrees;
+  for (const char* p = list; *p;) {
+    char* end = nullptr;
+    const long k = std::strtol(p, &end, 10);
+    if (end == p) break;
+    if (k > 0) degrees.push_back(static_cast<int>(k));
+    p = *end == ',' ? end + 1 : end;
   }
-  // DIR/<first word of the cloud>-<method tag>.ply, or "" when not asked.
-  const auto save_path = [&](const Case& c, const std::string& tag) {
-    return save_dir.empty()
-               ? std::string()
-               : save_dir + "/" + c.name.substr(0, c.name.find(' ')) + "-" + tag + ".ply";
-  };
+  return degrees;
+}
+
+// Reads the "--name value" pairs (unknown pairs and a lone last word are ignored).
+Options ParseOptions(int argc, char** argv) {
+  Options o;
+  implicitfit::MeshFitOptions& f = o.fit;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const char* name = argv[i];
+    const char* value = argv[i + 1];
+    if (!std::strcmp(name, "--points"))
+      o.points = std::atoi(value);
+    else if (!std::strcmp(name, "--seed"))
+      o.seed = static_cast<unsigned>(std::atoi(value));
+    else if (!std::strcmp(name, "--cells"))
+      o.cells = std::atoi(value);
+    else if (!std::strcmp(name, "--degree"))
+      o.degree = std::atoi(value);
+    else if (!std::strcmp(name, "--scan-degree"))
+      o.scan_degrees = ParseDegrees(value);
+    else if (!std::strcmp(name, "--scan-cells"))
+      o.scan_cells = std::atoi(value);
+    else if (!std::strcmp(name, "--far-field-ramp"))
+      f.far_field_ramp = std::atof(value);
+    else if (!std::strcmp(name, "--far-field-ramp-power"))
+      f.far_field_ramp_power = std::atof(value);
+    else if (!std::strcmp(name, "--far-field-relaxation"))
+      f.far_field_relaxation = std::atof(value);
+    else if (!std::strcmp(name, "--far-field-floor"))
+      f.far_field_floor = std::atof(value);
+    else if (!std::strcmp(name, "--sign-guard-samples"))
+      f.sign_guard_samples = std::atoi(value);
+    else if (!std::strcmp(name, "--only"))
+      o.only = value;
+    else if (!std::strcmp(name, "--save-meshes"))
+      o.save_dir = value;
+    else if (!std::strcmp(name, "--tangent-plane-signs"))
+      f.far_field_winding = std::atoi(value) == 0;
+    else if (!std::strcmp(name, "--true-normals"))
+      o.true_normals = std::atoi(value) != 0;
+    else if (!std::strcmp(name, "--adaptive"))
+      f.adaptive = std::atoi(value) != 0;
+    else if (!std::strcmp(name, "--max-levels"))
+      f.max_levels = std::atoi(value);
+    else if (!std::strcmp(name, "--sharp"))
+      f.sharp_features = std::atoi(value) != 0;
+    else if (!std::strcmp(name, "--feature-angle"))
+      f.feature_angle_deg = std::atof(value);
+    else if (!std::strcmp(name, "--refine-factor"))
+      f.refine_factor = std::atof(value);
+    else if (!std::strcmp(name, "--min-leaf-spacings"))
+      f.min_leaf_spacings = std::atof(value);
+    else if (!std::strcmp(name, "--max-unknowns"))
+      f.max_unknowns = std::atoll(value);
+    else if (!std::strcmp(name, "--mesh-cells"))
+      o.mesh_cells = std::atoi(value);
+  }
+  return o;
+}
+
+// DIR/<first word of the cloud>-<method tag>.ply, or "" when not asked.
+std::string SavePath(const Options& o, const Case& c, const std::string& tag) {
+  return o.save_dir.empty()
+             ? std::string()
+             : o.save_dir + "/" + c.name.substr(0, c.name.find(' ')) + "-" + tag + ".ply";
+}
+
+// The clouds whose name contains --only (the others are not even made: sampling, normals).
+std::vector<Case> MakeCases(const Options& o) {
   std::vector<Case> cases;
-  // (Clouds whose name does not contain --only are not even made: sampling, normals.)
-  const auto wanted = [&](const std::string& name) { return name.find(only) != std::string::npos; };
-  if (wanted("kitten"))
-    AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_kitten.xyz", "kitten (scan)", false,
-            &cases);
-  if (wanted("oni"))
-    AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/cgal/cgal_oni.pwn", "oni (scan)", false,
-            &cases);
+  const auto wanted = [&](const std::string& name) {
+    return name.find(o.only) != std::string::npos;
+  };
+  const std::string shared = IMPLICITFIT_SHARED_DATA, bundled = IMPLICITFIT_BUNDLED_DATA;
+  if (wanted("kitten")) AddScan(shared + "/cgal/cgal_kitten.xyz", "kitten (scan)", false, &cases);
+  if (wanted("oni")) AddScan(shared + "/cgal/cgal_oni.pwn", "oni (scan)", false, &cases);
   if (wanted("sphere (scan)"))
-    AddScan(std::string(IMPLICITFIT_BUNDLED_DATA) + "/cgal_sphere_single.xyz", "sphere (scan)",
-            true, &cases);
+    AddScan(bundled + "/cgal_sphere_single.xyz", "sphere (scan)", true, &cases);
   if (wanted("ellipsoid")) {
     implicitfit::Model m;
     m.AddPrimitive(implicitfit::NodeType::kEllipsoid, {0, 0, 0, 1.0, 0.7, 0.5, 1, 0, 0, 0, 1, 0});
-    AddGenerated("ellipsoid", m, true, points, seed, &cases);
+    AddGenerated("ellipsoid", m, true, o.points, o.seed, &cases);
   }
   if (wanted("torus")) {
     implicitfit::Model m;
     m.AddPrimitive(implicitfit::NodeType::kTorus, {0, 0, 0, 0, 0, 1, 1.0, 0.35});
-    AddGenerated("torus", m, false, points, seed, &cases);
+    AddGenerated("torus", m, false, o.points, o.seed, &cases);
   }
   if (wanted("union of two spheres")) {
     implicitfit::Model m;
     const int a = m.AddPrimitive(implicitfit::NodeType::kSphere, {-0.4, 0, 0, 0.6});
     const int b = m.AddPrimitive(implicitfit::NodeType::kSphere, {0.4, 0, 0, 0.6});
     m.AddOperator(implicitfit::NodeType::kUnion, {a, b}, 0.1, 0.1, 3);
-    AddGenerated("union of two spheres", m, false, points, seed, &cases);
+    AddGenerated("union of two spheres", m, false, o.points, o.seed, &cases);
   }
   if (wanted("Stanford bunny"))
-    AddScan(std::string(IMPLICITFIT_SHARED_DATA) + "/stanford/stanford_bunny_bun000_rangescan.ply",
+    AddScan(shared + "/stanford/stanford_bunny_bun000_rangescan.ply",
             "Stanford bunny bun000 (range scan)", false, &cases);
   for (const implicitfit::CadSolid& s : implicitfit::AllCadSolids())
     if (wanted(s.name))
-      AddSolid(s.name, s.truth, s.box_min, s.box_max, points, seed, true_normals, &cases);
+      AddSolid(s.name, s.truth, s.box_min, s.box_max, o.points, o.seed, o.true_normals, &cases);
   for (const implicitfit::GeneratedSolid& s : implicitfit::AllGeneratedSolids())
     if (wanted(s.name))
-      AddSolid(s.name, s.truth, s.box_min, s.box_max, points, seed, true_normals, &cases);
+      AddSolid(s.name, s.truth, s.box_min, s.box_max, o.points, o.seed, o.true_normals, &cases);
   for (const char* part : {"test_PC21", "test_PC33", "test_PC34", "test_PC35", "train_PC124",
                            "train_PC131", "train_PC145", "train_PC155"})
     if (wanted(std::string("Fit4CAD ") + part)) AddFit4Cad(part, &cases);
+  return cases;
+}
+
+// One patch-mesh row's fit settings.
+struct PatchRow {
+  int degree, cells;
+  bool convex;
+};
+
+// A cloud's patch-mesh rows: --degree; non-convex scans also --scan-degree; convex ones --convex.
+std::vector<PatchRow> PatchRows(const Options& o, const Case& c) {
+  std::vector<PatchRow> rows = {{o.degree, o.cells, false}};
+  // Issue 11: the degree is the lever that lowers the fit's RMS most at a given grid.
+  if (c.scan && !c.convex)
+    for (int k : o.scan_degrees) {
+      const int n = o.scan_cells >= 0 ? o.scan_cells : o.cells;
+      if (k != o.degree || n != o.cells) rows.push_back({k, n, false});
+    }
+  if (c.convex) rows.push_back({o.degree, o.cells, true});
+  return rows;
+}
+
+// The row's patch-mesh fit and the mesh of its zero set on the fit's grid box (in the child).
+TriangleMesh FitAndMesh(const Options& o, const Case& c, const PatchRow& row, Outcome* out) {
+  implicitfit::MeshFitOptions fo = o.fit;
+  fo.degree = row.degree;
+  fo.cells = row.cells;
+  fo.convex = row.convex;
+  const implicitfit::MeshFitResult r = implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
+  out->patches = r.tetrahedra;
+  out->fit_rms = r.rms;
+  out->initial_rms = r.initial_rms;
+  out->box_sign_errors = r.box_sign_errors;
+  if (row.convex) out->certified = r.success && r.certified_convex;
+  if (!r.success) return TriangleMesh();
+  implicitfit::MeshOptions mo;
+  mo.has_box = true;
+  mo.box_min = r.grid.BoxMin();
+  mo.box_max = r.grid.BoxMax();
+  mo.cell = (mo.box_max - mo.box_min).maxCoeff() / o.mesh_cells;
+  std::fprintf(stderr,
+               "%s: noise %.3g spacing %.3g threshold %.3g rounds %d (%d rejected) levels %d "
+               "leaves %lld unknowns %lld sharp faces %lld rms %.3g\n",
+               c.name.c_str(), r.noise, r.spacing, r.residual_threshold, r.rounds,
+               r.rejected_rounds, r.levels, r.leaves, r.unknowns, r.sharp_faces, r.rms);
+  mo.num_threads = 2;
+  return implicitfit::MeshModel(r.ToModel(), mo).mesh;
+}
+
+// The implicitfit rows of a cloud, each fitted and meshed in its own process.
+void RunPatchMeshRows(const Options& o, const Case& c) {
+  for (const PatchRow& row : PatchRows(o, c)) {
+    const Outcome out = RunIsolated(
+        c, o.seed, [&](Outcome* result) { return FitAndMesh(o, c, row, result); },
+        SavePath(o, c,
+                 std::string(row.convex ? "convex-" : "") + "degree" + std::to_string(row.degree)));
+    std::string row_label;
+    if (row.degree != 3) row_label += " --degree " + std::to_string(row.degree);
+    if (row.cells > 0) row_label += " --cells " + std::to_string(row.cells);
+    char method[240];
+    std::snprintf(method, sizeof method,
+                  "implicitfit patch-mesh%s%s (rms %.2e, start %.2e; f <= 0 at %lld box-face "
+                  "samples)",
+                  row.convex ? " --convex" : "", row_label.c_str(), out.fit_rms, out.initial_rms,
+                  out.box_sign_errors);
+    Row(c, method, out);
+  }
+}
+
+// A cloud's peer rows: PCL Poisson depth 7 and 8, CGAL Poisson (when built), PCL marching cubes.
+void RunPeerRows(const Options& o, const Case& c) {
+  for (int depth : {7, 8}) {
+    const Outcome out = RunIsolated(
+        c, o.seed, [&](Outcome*) { return bench::PoissonMesh(c.points, c.normals, depth); },
+        SavePath(o, c, "poisson" + std::to_string(depth)));
+    Row(c, "PCL Poisson depth " + std::to_string(depth), out);
+  }
+#ifdef IMPLICITFIT_HAVE_CGAL_POISSON
+  {
+    const Outcome out = RunIsolated(
+        c, o.seed,
+        [&](Outcome*) { return implicitfit_bench::CgalPoisson(c.points, c.normals).mesh; },
+        SavePath(o, c, "cgal-poisson"));
+    Row(c, "CGAL Poisson", out);
+  }
+#endif
+  const Outcome out = RunIsolated(
+      c, o.seed, [&](Outcome*) { return bench::HoppeMesh(c.points, c.normals, 100); },
+      SavePath(o, c, "hoppe"));
+  Row(c, "PCL marching cubes (Hoppe) 100^3", out);
+}
+
+}  // namespace
+
+// The clouds, then the table: per cloud the patch-mesh rows, then the peers' rows.
+int main(int argc, char** argv) {
+  const Options options = ParseOptions(argc, argv);
+  const std::vector<Case> cases = MakeCases(options);
   std::printf("parent resident memory before the methods: %.0f MB\n\n", PeakRssMb());
   std::printf(
       "| cloud | method | Chamfer (/ size) | mesh->truth / truth->mesh | Hausdorff (/ size) | "
@@ -365,97 +474,9 @@ int main(int argc, char** argv) {
       "consistency | watertight (bad edges) | triangles | patches | wall s | CPU s | peak MB |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
-    if (c.name.find(only) == std::string::npos) continue;
-    // Rows: the defaults (degree `degree`); on non-convex scans also each of `scan_degrees` (issue
-    // 11: the degree is the lever that lowers the fit's RMS most at a given grid) on
-    // `scan_cells` cubes; on convex inputs --convex.
-    struct PatchRow {
-      int degree, cells;
-      bool convex;
-    };
-    std::vector<PatchRow> rows = {{degree, cells, false}};
-    if (c.scan && !c.convex)
-      for (int k : scan_degrees) {
-        const int n = scan_cells >= 0 ? scan_cells : cells;
-        if (k != degree || n != cells) rows.push_back({k, n, false});
-      }
-    if (c.convex) rows.push_back({degree, cells, true});
-    for (const PatchRow& row : rows) {
-      const bool convex = row.convex;
-      const int row_degree = row.degree, row_cells = row.cells;
-      const Outcome o = RunIsolated(
-          c, seed,
-          [&](Outcome* out) {
-            implicitfit::MeshFitOptions fo;
-            fo.degree = row_degree;
-            fo.cells = row_cells;
-            fo.convex = convex;
-            fo.far_field_ramp = ramp;
-            fo.far_field_ramp_power = ramp_power;
-            fo.far_field_winding = winding;
-            fo.far_field_relaxation = relaxation;
-            fo.far_field_floor = floor;
-            fo.sign_guard_samples = guard_samples;
-            fo.adaptive = adaptive.adaptive;
-            fo.max_levels = adaptive.max_levels;
-            fo.sharp_features = adaptive.sharp_features;
-            fo.feature_angle_deg = adaptive.feature_angle_deg;
-            fo.refine_factor = adaptive.refine_factor;
-            fo.min_leaf_spacings = adaptive.min_leaf_spacings;
-            fo.max_unknowns = adaptive.max_unknowns;
-            const implicitfit::MeshFitResult r =
-                implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
-            out->patches = r.tetrahedra;
-            out->fit_rms = r.rms;
-            out->initial_rms = r.initial_rms;
-            out->box_sign_errors = r.box_sign_errors;
-            if (convex) out->certified = r.success && r.certified_convex;
-            if (!r.success) return TriangleMesh();
-            implicitfit::MeshOptions mo;
-            mo.has_box = true;
-            mo.box_min = r.grid.BoxMin();
-            mo.box_max = r.grid.BoxMax();
-            mo.cell = (mo.box_max - mo.box_min).maxCoeff() / mesh_cells;
-            std::fprintf(stderr,
-                         "%s: noise %.3g spacing %.3g threshold %.3g rounds %d (%d rejected) levels %d leaves "
-                         "%lld unknowns %lld sharp faces %lld rms %.3g\n",
-                         c.name.c_str(), r.noise, r.spacing, r.residual_threshold, r.rounds, r.rejected_rounds,
-                         r.levels, r.leaves, r.unknowns, r.sharp_faces, r.rms);
-            mo.num_threads = 2;
-            return implicitfit::MeshModel(r.ToModel(), mo).mesh;
-          },
-          save_path(c,
-                    std::string(convex ? "convex-" : "") + "degree" + std::to_string(row_degree)));
-      std::string row_label;
-      if (row_degree != 3) row_label += " --degree " + std::to_string(row_degree);
-      if (row_cells > 0) row_label += " --cells " + std::to_string(row_cells);
-      char method[240];
-      std::snprintf(method, sizeof method,
-                    "implicitfit patch-mesh%s%s (rms %.2e, start %.2e; f <= 0 at %lld box-face "
-                    "samples)",
-                    convex ? " --convex" : "", row_label.c_str(), o.fit_rms, o.initial_rms,
-                    o.box_sign_errors);
-      Row(c, method, o);
-    }
-    for (int depth : {7, 8}) {
-      const Outcome o = RunIsolated(
-          c, seed, [&](Outcome*) { return bench::PoissonMesh(c.points, c.normals, depth); },
-          save_path(c, "poisson" + std::to_string(depth)));
-      Row(c, "PCL Poisson depth " + std::to_string(depth), o);
-    }
-#ifdef IMPLICITFIT_HAVE_CGAL_POISSON
-    {
-      const Outcome o = RunIsolated(
-          c, seed,
-          [&](Outcome*) { return implicitfit_bench::CgalPoisson(c.points, c.normals).mesh; },
-          save_path(c, "cgal-poisson"));
-      Row(c, "CGAL Poisson", o);
-    }
-#endif
-    const Outcome o = RunIsolated(
-        c, seed, [&](Outcome*) { return bench::HoppeMesh(c.points, c.normals, 100); },
-        save_path(c, "hoppe"));
-    Row(c, "PCL marching cubes (Hoppe) 100^3", o);
+    if (c.name.find(options.only) == std::string::npos) continue;
+    RunPatchMeshRows(options, c);
+    RunPeerRows(options, c);
   }
   return 0;
 }
