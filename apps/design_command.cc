@@ -1,6 +1,6 @@
 // implicitfit design CLOUD --primitive plane|paraboloid --count m [--delta d] [--epsilon e]
 //                   [--order n] [--smoothing li-phillips|convex] --out MODEL.json
-// Li & Phillips' design from oriented points (jobs/design_job.h, fit/tree/design_builder.h): m
+// Li & Phillips' design from oriented points (implicitfit/design.h, fit/tree/design_builder.h): m
 // oriented representatives of the cloud, written as the smooth intersection of the enclosing
 // ellipsoid and one plane / paraboloid per representative; `fit --init MODEL.json` refines it.
 // Exit 0 on success, 2 for invalid usage or input (no output file).
@@ -11,7 +11,7 @@
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
 #include "datasets/normals/oriented_cloud.h"
-#include "jobs/design_job.h"
+#include "implicitfit/design.h"
 
 namespace implicitfit {
 namespace {

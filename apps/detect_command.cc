@@ -5,7 +5,7 @@
 //                    [--quiet]
 // Every primitive of a multi-primitive cloud, with its points (fit/detect/primitive_detector.h);
 // --freeform: the smooth remainder as B-spline surfaces (docs/splines.md); --score / --truth: the
-// result against ground-truth labels (jobs/detect_job.h). Progress on stderr unless --quiet.
+// result against ground-truth labels (implicitfit/detect.h). Progress on stderr unless --quiet.
 // Exit 0 with at least one primitive, 1 when none is found (no scene written), 2 for invalid
 // usage or input.
 #include <cstdio>
@@ -13,10 +13,10 @@
 
 #include "apps/command.h"
 #include "apps/report_header.h"
-#include "jobs/detect_job.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
+#include "implicitfit/detect.h"
 
 namespace implicitfit {
 namespace {

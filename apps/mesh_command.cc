@@ -9,7 +9,7 @@
 #include "apps/command.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
-#include "jobs/mesh_job.h"
+#include "implicitfit/mesh.h"
 
 namespace implicitfit {
 namespace {

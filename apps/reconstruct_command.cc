@@ -1,10 +1,10 @@
 // implicitfit reconstruct CLOUD --out MODEL.json [--scene SCENE.json] [--mesh MESH.ply]
 //                         [--report R.json] [--seed s] [--quiet] [--keep-unverified]
-// A solid model of the scan (fit/reconstruct/solid_reconstruction.h) from the primitives of a scene file
-// (datasets/io/scene_file.h). Without --scene the primitives come from `detect` run on the cloud
-// with its defaults and the same seed (jobs/reconstruct_job.h).
-// The solid verifies itself (fit/reconstruct/solid_verification.h) before anything but the report
-// is written: a solid that fails exits 1 with the reason and writes no model and no mesh;
+// A solid model of the scan (fit/reconstruct/solid_reconstruction.h) from the primitives of a scene
+// file (datasets/io/scene_file.h). Without --scene the primitives come from `detect` run on the
+// cloud with its defaults and the same seed (implicitfit/reconstruct.h). The solid verifies itself
+// (fit/reconstruct/solid_verification.h) before anything but the report is written: a solid that
+// fails exits 1 with the reason and writes no model and no mesh;
 // --keep-unverified writes them anyway, the model marked {"verification": {"verified": false,
 // "reason"}} (exit 1 still). The mesh is `mesh MODEL.json`'s default for the written model (its
 // proven bounds), so the two agree. Progress on stderr per stage, one summary line at the end;
@@ -20,14 +20,14 @@
 #include <vector>
 
 #include "apps/command.h"
-#include "apps/report_header.h"
 #include "apps/progress_printer.h"
-#include "jobs/reconstruct_job.h"
+#include "apps/report_header.h"
 #include "apps/view_outputs.h"
 #include "datasets/io/atomic_file.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
 #include "datasets/meshing/model_mesher.h"
+#include "implicitfit/reconstruct.h"
 #include "model/file/model_json.h"
 
 namespace implicitfit {

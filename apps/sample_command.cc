@@ -9,13 +9,13 @@
 #include <iostream>
 
 #include "apps/command.h"
-#include "datasets/io/io_error.h"
-#include "datasets/io/read_limits.h"
-#include "datasets/io/truth_labels.h"
-#include "datasets/io/model_file.h"
-#include "jobs/sample_job.h"
 #include "datasets/clouds/ply_writer.h"
 #include "datasets/clouds/xyz_writer.h"
+#include "datasets/io/io_error.h"
+#include "datasets/io/model_file.h"
+#include "datasets/io/read_limits.h"
+#include "datasets/io/truth_labels.h"
+#include "implicitfit/sample.h"
 
 namespace implicitfit {
 

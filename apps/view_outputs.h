@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "jobs/detect_job.h"
-#include "jobs/reconstruct_job.h"
+#include "implicitfit/detect.h"
+#include "implicitfit/reconstruct.h"
 #include "model/model.h"
 
 namespace implicitfit {

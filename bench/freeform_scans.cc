@@ -16,6 +16,8 @@
 //   sigma_plane is given over the freeform points and, as the median-based value
 //   (median r^2 / 0.4549, the median of chi^2_1), over every point of the cloud.
 // Usage: build/bench/freeform_scans [--only table|bunny] > table.md   (progress on stderr)
+#include <sys/stat.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
@@ -23,11 +25,10 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
-#include <sys/stat.h>
 #include <vector>
 
-#include "jobs/detect_job.h"
 #include "datasets/normals/neighbourhoods.h"
+#include "implicitfit/detect.h"
 
 using namespace implicitfit;
 

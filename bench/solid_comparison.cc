@@ -13,7 +13,8 @@
 //     estimated and oriented as `reconstruct` does, for every method); truth: each labelled
 //     point's ground-truth surface (planes and quadrics: the implicit equation; tori: the exact
 //     torus distance, the torus read from the parametric file by
-//     datasets/generators/fit4cad_torus.h); implicitfit from the labels (diagnostic) and end to end;
+//     datasets/generators/fit4cad_torus.h); implicitfit from the labels (diagnostic) and end to
+//     end;
 //   CGAL's box-on-ground scan (exact outward normals, no labels): with the file's normals
 //     (detect first, diagnostic) and points only (normals estimated); truth: the tangent plane of
 //     each point (its faces are planar);
@@ -31,7 +32,7 @@
 //   surface, interleaved: PC155's slab top under the dome's own base, two bodies touching) gets
 //   a second row per method without those truth points (bench/solid_cases.h), since no one-piece
 //   solid has a surface there.
-// End to end is jobs/reconstruct_job.h's ReconstructCloud, what `reconstruct CLOUD` runs after
+// End to end is implicitfit/reconstruct.h's ReconstructCloud, what `reconstruct CLOUD` runs after
 // reading the cloud: detect, orientation, CSG, fit, verification; then the mesh (256 cells on
 // the longest side of the meshing box, --cells: the finest grid of PCL's Poisson at depth 8; the
 // box is `mesh`'s default, the verified solid's proven bounds enlarged by 10%; an unverified
@@ -66,7 +67,7 @@
 #include <string>
 #include <vector>
 
-#include "jobs/reconstruct_job.h"
+#include "implicitfit/reconstruct.h"
 #ifdef IMPLICITFIT_HAVE_CGAL_POISSON
 #include "bench/cgal_poisson.h"
 #endif
@@ -297,7 +298,7 @@ void RunImplicitfit(const SolidCloud& c, bool labelled, unsigned seed, const Fig
   try {
     implicitfit::SolidReconstruction r;
     size_t primitives = c.labelled.size();
-    if (!labelled) {  // jobs/reconstruct_job.h: detect, then reconstruct
+    if (!labelled) {  // implicitfit/reconstruct.h: detect, then reconstruct
       implicitfit::PointCloud cloud;
       cloud.points = c.points;
       cloud.normals = c.normals_of_points;

@@ -1,5 +1,6 @@
 # `cmake --install` of implicitfit as a package others build on (find_package(implicitfit)):
-#   include/implicitfit/*.h            the public API: thin umbrella headers (include/implicitfit/)
+#   include/implicitfit/*.h            the public API (include/implicitfit/): the jobs' declarations
+#                                      and thin umbrella headers
 #   include/implicitfit/internal/...   the headers they include (model/, fit/, datasets/, jobs/), as
 #                                      Ceres installs ceres/internal/: not API, may change
 #   lib/libimplicitfit_*.a             the static libraries model, fit, datasets, jobs

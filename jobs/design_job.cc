@@ -1,10 +1,9 @@
-#include "jobs/design_job.h"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
+#include "implicitfit/design.h"
 #include "model/blends/unit_step.h"
 
 namespace implicitfit {

@@ -1,5 +1,3 @@
-#include "jobs/detect_job.h"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +11,7 @@
 #include "datasets/normals/oriented_cloud.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/splines/freeform_detection.h"
+#include "implicitfit/detect.h"
 
 namespace implicitfit {
 namespace {

@@ -1,10 +1,9 @@
-#include "jobs/mesh_job.h"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
+#include "implicitfit/mesh.h"
 #include "model/file/clip_to_tetrahedron.h"
 
 namespace implicitfit {

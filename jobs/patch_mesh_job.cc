@@ -1,7 +1,7 @@
-#include "jobs/patch_mesh_job.h"
-
 #include <cstdio>
 #include <stdexcept>
+
+#include "implicitfit/patch_mesh.h"
 
 namespace implicitfit {
 

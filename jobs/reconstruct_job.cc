@@ -1,11 +1,10 @@
-#include "jobs/reconstruct_job.h"
-
 #include <cstdio>
 
 #include "datasets/io/io_error.h"
 #include "datasets/io/scene_file.h"
 #include "datasets/normals/oriented_cloud.h"
-#include "jobs/detect_job.h"
+#include "implicitfit/detect.h"
+#include "implicitfit/reconstruct.h"
 
 namespace implicitfit {
 namespace {

@@ -1,9 +1,9 @@
-#include "jobs/sample_job.h"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+
+#include "implicitfit/sample.h"
 
 namespace implicitfit {
 namespace {

@@ -1,5 +1,5 @@
 // implicitfit.detect: every primitive of a cloud, as `implicitfit detect CLOUD` finds them
-// (jobs/detect_job.h: DetectCloud), on NumPy arrays. The GIL is released for the normals and the
+// (implicitfit/detect.h: DetectCloud), on NumPy arrays. The GIL is released for the normals and the
 // detection. The result is a DetectResult: primitives (DetectedPrimitive: the scene file's model
 // node as a dict, kind, indices of its points, rms_distance), labels per point, and the job's
 // report (the `detect --report` JSON without the command line's header).
@@ -13,7 +13,7 @@
 
 #include "datasets/io/io_error.h"
 #include "datasets/io/truth_labels.h"
-#include "jobs/detect_job.h"
+#include "implicitfit/detect.h"
 #include "model/file/model_json.h"
 #include "python/arrays.h"
 #include "python/bindings.h"

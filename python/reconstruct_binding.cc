@@ -1,5 +1,5 @@
 // implicitfit.reconstruct: the verified solid of a cloud, as `implicitfit reconstruct CLOUD` builds
-// it without a scene (jobs/reconstruct_job.h: ReconstructCloud — detect, then the solid), on
+// it without a scene (implicitfit/reconstruct.h: ReconstructCloud — detect, then the solid), on
 // NumPy arrays. The GIL is released for the normals and the reconstruction. The result is a
 // ReconstructResult: the model file as a dict (None unless the solid verified, or was built and
 // keep_unverified is set: then marked unverified, as `reconstruct --keep-unverified` writes it),
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "jobs/reconstruct_job.h"
+#include "implicitfit/reconstruct.h"
 #include "model/file/model_json.h"
 #include "python/arrays.h"
 #include "python/bindings.h"

@@ -1,4 +1,4 @@
-// implicitfit.sample: the sample job (jobs/sample_job.h, as `implicitfit sample`): oriented
+// implicitfit.sample: the sample job (implicitfit/sample.h, as `implicitfit sample`): oriented
 // points on a model's zero set with noise, outliers, a partial view and the truth, as NumPy
 // arrays. The GIL is released while sampling.
 #include <pybind11/numpy.h>
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "jobs/sample_job.h"
+#include "implicitfit/sample.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
 #include "python/json_to_python.h"
@@ -97,7 +97,7 @@ void BindSample(py::module_& m) {
   m.def("sample", &Sample, py::arg("model"), py::arg("count"), py::arg("noise") = 0.0,
         py::arg("outliers") = 0.0, py::arg("seed") = 0, py::arg("view") = py::none(),
         py::arg("view_angle") = 180.0,
-        "Oriented points on the model's zero set, as `implicitfit sample` (jobs/sample_job.h).\n"
+        "Oriented points on the model's zero set, as `implicitfit sample` (implicitfit/sample.h).\n"
         "noise: sigma along the normal; outliers: fraction replaced by uniform points in the\n"
         "box; view, view_angle: a partial view (normals within view_angle degrees of view).\n"
         "Returns a SampleResult (points, normals, outliers, labels, truth_kinds, report;\n"

@@ -59,7 +59,7 @@ struct BatchOptions {
   std::string out_dir;      // must exist
   int jobs = 1;             // threads of the pool, >= 1
   bool resume = false;      // skip inputs whose outputs are complete
-  bool scene = false;       // `--model scene`: one detection per input (jobs/detect_job.h)
+  bool scene = false;       // `--model scene`: one detection per input (implicitfit/detect.h)
   DetectionOptions detect;  // used for every input when scene is set
   bool solid = false;       // `--model solid`: one reconstruction per input (detect.seed used)
   // Bernstein kinds (quadric-patch, cubic-patch, patch-mesh; apps/fit/fit_model_kinds.h): when set,
@@ -93,10 +93,10 @@ BatchOutcome ProcessBatchInput(const BatchInput& input, const BatchOptions& opti
 // inliers = points assigned to a primitive, rms = the largest primitive RMS.
 BatchOutcome ProcessSceneInput(const BatchInput& input, const BatchOptions& options);
 
-// `--model solid` (apps/batch/batch_solid.cc): `reconstruct` without a scene (detect, then the solid;
-// jobs/reconstruct_job.h): <name>.model.json and <name>.report.json (the `reconstruct --report`
-// content). ok: the reconstruction succeeded; failed: it did not (report only; a stale model is
-// removed); skipped (resume): the model parses and the report parses and says success.
+// `--model solid` (apps/batch/batch_solid.cc): `reconstruct` without a scene (detect, then the
+// solid; implicitfit/reconstruct.h): <name>.model.json and <name>.report.json (the `reconstruct
+// --report` content). ok: the reconstruction succeeded; failed: it did not (report only; a stale
+// model is removed); skipped (resume): the model parses and the report parses and says success.
 // rms, inliers and points from the report.
 BatchOutcome ProcessSolidInput(const BatchInput& input, const BatchOptions& options);
 

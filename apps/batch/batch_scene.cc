@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/batch/batch_job.h"
-#include "jobs/detect_job.h"
 #include "datasets/io/scene_file.h"
+#include "implicitfit/detect.h"
 
 namespace implicitfit {
 namespace {

@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/batch/batch_job.h"
-#include "jobs/reconstruct_job.h"
 #include "datasets/io/model_file.h"
+#include "implicitfit/reconstruct.h"
 
 namespace implicitfit {
 namespace {

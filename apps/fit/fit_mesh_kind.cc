@@ -1,5 +1,5 @@
 // fit CLOUD --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1]
-//     [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh (jobs/patch_mesh_job.h).
+//     [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh (implicitfit/patch_mesh.h).
 // Exit 0 success; 1 the fit failed or (--convex) the certificate failed, no model written; 2
 // invalid usage or input.
 #include <cstdio>
@@ -10,7 +10,7 @@
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
 #include "datasets/normals/oriented_cloud.h"
-#include "jobs/patch_mesh_job.h"
+#include "implicitfit/patch_mesh.h"
 
 namespace implicitfit {
 

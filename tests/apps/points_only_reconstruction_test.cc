@@ -1,7 +1,7 @@
 // `reconstruct` end to end on points-only scans (issue 24): generated parts
 // (datasets/generators/generated_solids.h) sampled with noise sigma = 0.2% of their size and no
 // normals, no labels; normals estimated and oriented (datasets/normals/normal_estimation.h, as
-// for a raw scan), then detect and the solid (jobs/reconstruct_job.h: ReconstructCloud).
+// for a raw scan), then detect and the solid (implicitfit/reconstruct.h: ReconstructCloud).
 // Checked against the truth model only:
 //   RMS first-order distance |f| / |grad f| of the result at noise-free truth points <= 3 sigma;
 //   the sign of f equal to the truth's at >= 99% of random points of the enlarged box farther
@@ -16,7 +16,7 @@
 #include "datasets/generators/generated_solids.h"
 #include "datasets/generators/model_sampler.h"
 #include "datasets/normals/normal_estimation.h"
-#include "jobs/reconstruct_job.h"
+#include "implicitfit/reconstruct.h"
 #include "support/sample_in_box.h"
 #include "support/sign_agreement.h"
 
