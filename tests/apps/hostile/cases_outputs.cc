@@ -99,84 +99,89 @@ std::vector<std::string> LinkStillLink(const std::string& dir, const std::string
   return problems;
 }
 
+// The cases of one writer's output path: the input itself (by name, normalised, linked), a folder,
+// a FIFO, a device, a missing or file-blocked folder, a link through which it would write, a
+// name too long.
+void AddOutputPathCases(const Writer& w, std::vector<Case>* cases) {
+  // The output is the input: by the same name, a normalised name, a symbolic and a hard link.
+  Case same = Make(w, "out_is_input", w.input, 2, "input",
+                   "fit c.xyz --out c.xyz replaces the input");
+  same.sanitized = true;
+  cases->push_back(same);
+  cases->push_back(Make(w, "out_is_input_dotted", "./sub/../" + w.input, 2, "input", ""));
+  cases->back().setup = [](const std::string& dir) {
+    Inputs(dir);
+    std::filesystem::create_directory(dir + "/sub");
+  };
+  Case via_link = Make(w, "out_is_input_via_link", "alias", 2, "input", "");
+  via_link.setup = [w](const std::string& dir) {
+    Inputs(dir);
+    MakeSymlink(w.input, dir + "/alias");
+  };
+  cases->push_back(via_link);
+  Case hard = Make(w, "out_is_input_hard_link", "hard", 2, "input", "");
+  hard.setup = [w](const std::string& dir) {
+    Inputs(dir);
+    ::link((dir + "/" + w.input).c_str(), (dir + "/hard").c_str());
+  };
+  cases->push_back(hard);
+  // Folders, devices, FIFOs as outputs; a missing folder (refused before the work).
+  Case folder = Make(w, "out_is_folder", "d", 2, "directory", "");
+  folder.setup = [](const std::string& dir) {
+    Inputs(dir);
+    std::filesystem::create_directory(dir + "/d");
+  };
+  cases->push_back(folder);
+  Case fifo = Make(w, "out_is_fifo", OutName(w, "f"), 2, "FIFO",
+                   "write-then-rename replaces a device node with a regular file");
+  fifo.setup = [w](const std::string& dir) {
+    Inputs(dir);
+    MakeFifo(dir + "/" + OutName(w, "f"));
+  };
+  fifo.sanitized = w.id == "fit";
+  cases->push_back(fifo);
+  Case device = Make(w, "out_is_device_link", OutName(w, "null"), 2, "device", "");
+  device.setup = [w](const std::string& dir) {
+    Inputs(dir);
+    MakeSymlink("/dev/null", dir + "/" + OutName(w, "null"));
+  };
+  cases->push_back(device);
+  Case missing = Make(w, "out_in_missing_folder", "missing/" + OutName(w, "o"), 2, "missing", "");
+  missing.seconds = 3;  // at once, not after the fit
+  missing.sanitized = w.id == "reconstruct";
+  cases->push_back(missing);
+  Case under_file = Make(w, "out_under_a_file", w.input + "/" + OutName(w, "o"), 2, "", "");
+  cases->push_back(under_file);
+  // Through a symbolic link: the target gets the content, the link stays, the mode is kept.
+  Case through = Make(w, "out_through_link", OutName(w, "link"), 0, "",
+                      "write-then-rename replaces a symlink; turns a 0600 file into 0644");
+  const std::string link = OutName(w, "link"), target = OutName(w, "target");
+  through.setup = [link, target](const std::string& dir) {
+    Inputs(dir);
+    Write(dir + "/" + target, "old\n");
+    ::chmod((dir + "/" + target).c_str(), 0600);
+    MakeSymlink(target, dir + "/" + link);
+  };
+  through.outputs.push_back(target);
+  through.check = [link, target](const std::string& dir, const RunOutcome&) {
+    return LinkStillLink(dir, link, target, 0600);
+  };
+  through.sanitized = w.id == "fit" || w.id == "sample";
+  cases->push_back(through);
+  // A 250-byte name (its temporary must still fit the 255-byte limit).
+  const std::string long_name = OutName(w, std::string(245, 'n'));
+  Case long_case = Make(w, "out_long_name", long_name, 0, "", "fails for ~250-character names");
+  long_case.outputs.push_back(long_name);
+  long_case.must_exist = {long_name};
+  long_case.sanitized = w.id == "fit";
+  cases->push_back(long_case);
+}
+
 }  // namespace
 
 std::vector<Case> OutputCases() {
   std::vector<Case> cases;
-  for (const Writer& w : kWriters) {
-    // The output is the input: by the same name, a normalised name, a symbolic and a hard link.
-    Case same = Make(w, "out_is_input", w.input, 2, "input",
-                     "fit c.xyz --out c.xyz replaces the input");
-    same.sanitized = true;
-    cases.push_back(same);
-    cases.push_back(Make(w, "out_is_input_dotted", "./sub/../" + w.input, 2, "input", ""));
-    cases.back().setup = [](const std::string& dir) {
-      Inputs(dir);
-      std::filesystem::create_directory(dir + "/sub");
-    };
-    Case via_link = Make(w, "out_is_input_via_link", "alias", 2, "input", "");
-    via_link.setup = [w](const std::string& dir) {
-      Inputs(dir);
-      MakeSymlink(w.input, dir + "/alias");
-    };
-    cases.push_back(via_link);
-    Case hard = Make(w, "out_is_input_hard_link", "hard", 2, "input", "");
-    hard.setup = [w](const std::string& dir) {
-      Inputs(dir);
-      ::link((dir + "/" + w.input).c_str(), (dir + "/hard").c_str());
-    };
-    cases.push_back(hard);
-    // Folders, devices, FIFOs as outputs; a missing folder (refused before the work).
-    Case folder = Make(w, "out_is_folder", "d", 2, "directory", "");
-    folder.setup = [](const std::string& dir) {
-      Inputs(dir);
-      std::filesystem::create_directory(dir + "/d");
-    };
-    cases.push_back(folder);
-    Case fifo = Make(w, "out_is_fifo", OutName(w, "f"), 2, "FIFO",
-                     "write-then-rename replaces a device node with a regular file");
-    fifo.setup = [w](const std::string& dir) {
-      Inputs(dir);
-      MakeFifo(dir + "/" + OutName(w, "f"));
-    };
-    fifo.sanitized = w.id == "fit";
-    cases.push_back(fifo);
-    Case device = Make(w, "out_is_device_link", OutName(w, "null"), 2, "device", "");
-    device.setup = [w](const std::string& dir) {
-      Inputs(dir);
-      MakeSymlink("/dev/null", dir + "/" + OutName(w, "null"));
-    };
-    cases.push_back(device);
-    Case missing = Make(w, "out_in_missing_folder", "missing/" + OutName(w, "o"), 2, "missing", "");
-    missing.seconds = 3;  // at once, not after the fit
-    missing.sanitized = w.id == "reconstruct";
-    cases.push_back(missing);
-    Case under_file = Make(w, "out_under_a_file", w.input + "/" + OutName(w, "o"), 2, "", "");
-    cases.push_back(under_file);
-    // Through a symbolic link: the target gets the content, the link stays, the mode is kept.
-    Case through = Make(w, "out_through_link", OutName(w, "link"), 0, "",
-                        "write-then-rename replaces a symlink; turns a 0600 file into 0644");
-    const std::string link = OutName(w, "link"), target = OutName(w, "target");
-    through.setup = [link, target](const std::string& dir) {
-      Inputs(dir);
-      Write(dir + "/" + target, "old\n");
-      ::chmod((dir + "/" + target).c_str(), 0600);
-      MakeSymlink(target, dir + "/" + link);
-    };
-    through.outputs.push_back(target);
-    through.check = [link, target](const std::string& dir, const RunOutcome&) {
-      return LinkStillLink(dir, link, target, 0600);
-    };
-    through.sanitized = w.id == "fit" || w.id == "sample";
-    cases.push_back(through);
-    // A 250-byte name (its temporary must still fit the 255-byte limit).
-    const std::string long_name = OutName(w, std::string(245, 'n'));
-    Case long_case = Make(w, "out_long_name", long_name, 0, "", "fails for ~250-character names");
-    long_case.outputs.push_back(long_name);
-    long_case.must_exist = {long_name};
-    long_case.sanitized = w.id == "fit";
-    cases.push_back(long_case);
-  }
+  for (const Writer& w : kWriters) AddOutputPathCases(w, &cases);
   // A missing output folder after a long run: refused before the run (it was 11.5 s).
   for (const auto& [id, args] : std::vector<std::pair<std::string, std::string>>{
            {"reconstruct_detect_missing_folder", "reconstruct big.xyz --out missing/m.json"},
