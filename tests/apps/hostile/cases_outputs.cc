@@ -104,8 +104,8 @@ std::vector<std::string> LinkStillLink(const std::string& dir, const std::string
 // name too long.
 void AddOutputPathCases(const Writer& w, std::vector<Case>* cases) {
   // The output is the input: by the same name, a normalised name, a symbolic and a hard link.
-  Case same = Make(w, "out_is_input", w.input, 2, "input",
-                   "fit c.xyz --out c.xyz replaces the input");
+  Case same =
+      Make(w, "out_is_input", w.input, 2, "input", "fit c.xyz --out c.xyz replaces the input");
   same.sanitized = true;
   cases->push_back(same);
   cases->push_back(Make(w, "out_is_input_dotted", "./sub/../" + w.input, 2, "input", ""));
