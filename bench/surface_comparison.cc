@@ -403,7 +403,11 @@ TriangleMesh FitAndMesh(const Options& o, const Case& c, const PatchRow& row, Ou
   out->initial_rms = r.initial_rms;
   out->box_sign_errors = r.box_sign_errors;
   if (row.convex) out->certified = r.success && r.certified_convex;
-  if (!r.success) return TriangleMesh();
+  if (!r.success) {  // the row then reads inf: say why
+    std::fprintf(stderr, "%s: patch mesh (degree %d, cells %d) failed: %s\n", c.name.c_str(),
+                 row.degree, row.cells, r.message.c_str());
+    return TriangleMesh();
+  }
   implicitfit::MeshOptions mo;
   mo.has_box = true;
   mo.box_min = r.grid.BoxMin();
