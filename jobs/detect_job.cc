@@ -75,6 +75,7 @@ void AddFreeformSurfaces(const Neighbourhoods& nb, const DetectionOptions& optio
   fo.spacing = r.spacing;
   fo.min_points = std::max(r.min_points, 1);
   fo.num_threads = options.num_threads;
+  fo.progress = options.progress;
   const FreeformResult f =
       DetectFreeformSurfaces(d->cloud.points, d->cloud.normals, nb.indices, fo,
                              static_cast<int>(d->scene.primitives.size()), &r.labels, &r.residuals);

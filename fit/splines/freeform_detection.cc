@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -162,6 +163,7 @@ class FreeformStage {
                                                : "unknown";
     for (size_t k = 0; k < a.support.size(); ++k) assigned_[a.support[k]] = a.residuals[k];
     result_.surfaces.push_back(std::move(surface));
+    TellProgress(false);
     // What the patch left of the region may hold another surface.
     std::vector<int> rest;
     for (int i : region)
@@ -179,6 +181,29 @@ class FreeformStage {
         subset, neighbours_,
         [&](int i, int j) { return normals_[i].dot(normals_[j]) >= std::min(band[i], band[j]); },
         &member_);
+  }
+
+  // The progress line (options' progress): at most every 5 s unless `now`.
+  void TellProgress(bool now) {
+    if (!o_.progress) return;
+    const auto t = std::chrono::steady_clock::now();
+    if (!now && std::chrono::duration<double>(t - last_told_).count() < 5.0) return;
+    last_told_ = t;
+    char line[200];
+    std::snprintf(
+        line, sizeof line,
+        "freeform: %zu surfaces, %zu of %d smooth-region points assigned, region %d of %d",
+        result_.surfaces.size(), assigned_.size(), total_points_, regions_done_, total_regions_);
+    o_.progress(line);
+  }
+  void StartRegions(int regions, int points) {
+    total_regions_ = regions;
+    total_points_ = points;
+    last_told_ = std::chrono::steady_clock::now();
+  }
+  void RegionDone() {
+    ++regions_done_;
+    TellProgress(false);
   }
 
   FreeformResult& result() { return result_; }
@@ -351,6 +376,8 @@ class FreeformStage {
   LocalScaleFigures figures_;
   int threads_ = 1;
   FreeformResult result_;
+  std::chrono::steady_clock::time_point last_told_;
+  int total_regions_ = 0, total_points_ = 0, regions_done_ = 0;
   std::map<int, double> assigned_;  // point -> residual, every accepted patch's support
 };
 
@@ -381,11 +408,24 @@ FreeformResult DetectFreeformSurfaces(const std::vector<Vec>& points, const std:
   std::vector<int> free;
   for (size_t i = 0; i < points.size(); ++i)
     if ((*labels)[i] < 0) free.push_back(static_cast<int>(i));
-  for (const std::vector<int>& region : stage.SmoothParts(free)) {
-    if (static_cast<int>(region.size()) < options.min_points) break;  // largest first
+  const std::vector<std::vector<int>> regions = stage.SmoothParts(free);
+  int large = 0, large_points = 0;
+  for (const std::vector<int>& region : regions)  // largest first
+    if (static_cast<int>(region.size()) >= options.min_points) {
+      ++large;
+      large_points += static_cast<int>(region.size());
+    }
+  if (options.progress)
+    options.progress("freeform: " + std::to_string(free.size()) + " unassigned points, " +
+                     std::to_string(large) + " smooth regions of at least " +
+                     std::to_string(options.min_points) + " points (" +
+                     std::to_string(large_points) + " points)");
+  stage.StartRegions(large, large_points);
+  for (int k = 0; k < large; ++k) {
     ++stage.result().regions;
-    stage.result().region_points += static_cast<int>(region.size());
-    stage.Process(region, 0);
+    stage.result().region_points += static_cast<int>(regions[k].size());
+    stage.Process(regions[k], 0);
+    stage.RegionDone();
   }
   FreeformResult result = std::move(stage.result());
   for (size_t s = 0; s < result.surfaces.size(); ++s)
@@ -394,6 +434,14 @@ FreeformResult DetectFreeformSurfaces(const std::vector<Vec>& points, const std:
       (*residuals)[i] = stage.assigned().at(i);
     }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (options.progress) {
+    int assigned = 0;
+    for (const FreeformSurface& s : result.surfaces) assigned += static_cast<int>(s.points.size());
+    char line[160];
+    std::snprintf(line, sizeof line, "freeform: %zu surfaces, %d points assigned in %.1f s",
+                  result.surfaces.size(), assigned, result.seconds);
+    options.progress(line);
+  }
   return result;
 }
 

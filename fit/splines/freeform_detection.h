@@ -32,6 +32,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -51,6 +52,9 @@ struct FreeformOptions {
   int degree = 3;
   int max_depth = 6;    // splits per region at most
   int num_threads = 0;  // 0: all cores
+  // Told a line when the stage starts, every 5 s while it runs (surfaces, points assigned,
+  // regions done) and when it ends; empty: silent (the detector's DetectionOptions::progress).
+  std::function<void(const std::string&)> progress;
   bool IsValid(std::string* error) const;
 };
 

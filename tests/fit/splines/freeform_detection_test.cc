@@ -4,15 +4,16 @@
 // five-fold across it (a stereo scan's depth noise grows with the range) is still >= 90%
 // assigned, each patch's RMS within 2x the RMS of the true noise over its points; uniform random
 // points give none.
+#include "fit/splines/freeform_detection.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "datasets/normals/neighbourhoods.h"
-#include "fit/splines/freeform_detection.h"
 
 namespace implicitfit {
 namespace {
@@ -61,8 +62,14 @@ TEST(FreeformDetection, WavySheetBecomesSplineSurfaces) {
   o.threshold = 3 * sigma;
   o.normal_angle_deg = 20;
   o.min_points = 20;
+  std::vector<std::string> told;  // the progress lines: the start and the end at least
+  o.progress = [&told](const std::string& line) { told.push_back(line); };
   std::vector<double> residuals;
   const FreeformResult r = DetectFreeformSurfaces(points, normals, nb.indices, o, 1, &labels, &residuals);
+  ASSERT_GE(told.size(), 2u);
+  EXPECT_NE(told.front().find("smooth regions"), std::string::npos) << told.front();
+  EXPECT_NE(told.back().find(std::to_string(r.surfaces.size()) + " surfaces"), std::string::npos)
+      << told.back();
   ASSERT_GE(r.surfaces.size(), 1u);
   const int assigned = SheetPointsAssigned(labels, sheet_begin);
   EXPECT_GE(assigned, 0.95 * sheet_points);
