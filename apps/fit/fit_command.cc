@@ -124,8 +124,15 @@ CommandAction AddFitCommand(CLI::App& app) {
   cmd->add_option("--view", a->view, "Also write a page of the result (docs/view.md)");
   cmd->add_option("--ply", a->ply, "Also write the cloud with each point's residual (PLY)");
   const auto run = [a]() {
-    ModelFitRequest request{a->cloud, a->out,    a->report, a->init,
-                            a->kind,  a->degree, a->convex, a->tetrahedron};
+    ModelFitRequest request;
+    request.cloud = a->cloud;
+    request.out = a->out;
+    request.report = a->report;
+    request.init = a->init;
+    request.kind = a->kind;
+    request.degree = a->degree;
+    request.convex = a->convex;
+    request.tetrahedron = a->tetrahedron;
     request.through_vertices = a->through_vertices;
     request.vertex_normals = a->vertex_normals;
     request.through_edges = a->through_edges;
