@@ -19,17 +19,10 @@ struct Sampled {
   std::vector<Eigen::Vector3d> clean, noisy, normals;
 };
 
-// z = h(x, y): a bicubic B-spline with 6 x 6 control points over [0, 1]^2 (heights +- 0.1).
-Sampled HeightField(int n, double sigma, unsigned seed) {
-  SplineStructure s;
-  s.degree[0] = s.degree[1] = 3;
-  s.count[0] = s.count[1] = 6;
-  s.knots[0] = s.knots[1] = ClampedUniformKnots(3, 6, 0.0, 1.0);
-  std::vector<double> P;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      P.insert(P.end(), {i / 5.0, j / 5.0, 0.1 * std::sin(1.3 * i + 0.4) * std::cos(0.9 * j)});
-  std::mt19937 rng(seed);
+// n samples of the surface (s, P) at uniform random (u, v), each displaced by N(0, sigma) along
+// the unit normal S_u x S_v there.
+Sampled SampleSurface(const SplineStructure& s, const std::vector<double>& P, int n, double sigma,
+                      std::mt19937& rng) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, sigma);
   Sampled out;
@@ -45,6 +38,20 @@ Sampled HeightField(int n, double sigma, unsigned seed) {
     out.normals.push_back(nrm);
   }
   return out;
+}
+
+// z = h(x, y): a bicubic B-spline with 6 x 6 control points over [0, 1]^2 (heights +- 0.1).
+Sampled HeightField(int n, double sigma, unsigned seed) {
+  SplineStructure s;
+  s.degree[0] = s.degree[1] = 3;
+  s.count[0] = s.count[1] = 6;
+  s.knots[0] = s.knots[1] = ClampedUniformKnots(3, 6, 0.0, 1.0);
+  std::vector<double> P;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      P.insert(P.end(), {i / 5.0, j / 5.0, 0.1 * std::sin(1.3 * i + 0.4) * std::cos(0.9 * j)});
+  std::mt19937 rng(seed);
+  return SampleSurface(s, P, n, sigma, rng);
 }
 
 TEST(BSplineSurfaceFit, BicubicHeightFieldWithinTheNoise) {
@@ -93,18 +100,7 @@ TEST(BSplineSurfaceFit, HeldOutRandomSurfacesWithinTheNoise) {
                                                          0.16 * (u01(rng) - 0.5));
         P.insert(P.end(), {c[0], c[1], c[2]});
       }
-    Sampled data;
-    for (int k = 0; k < 2000; ++k) {
-      double d[3][3][3];
-      SurfaceDerivatives(s, P.data(), u01(rng), u01(rng), 1, d);
-      const Eigen::Vector3d x(d[0][0][0], d[0][0][1], d[0][0][2]);
-      const Eigen::Vector3d nrm = Eigen::Vector3d(d[1][0][0], d[1][0][1], d[1][0][2])
-                                      .cross(Eigen::Vector3d(d[0][1][0], d[0][1][1], d[0][1][2]))
-                                      .normalized();
-      data.clean.push_back(x);
-      data.noisy.push_back(x + sigma * unit(rng) * nrm);
-      data.normals.push_back(nrm);
-    }
+    const Sampled data = SampleSurface(s, P, 2000, sigma, rng);
     SurfaceFitOptions o;
     o.degree = s.degree[0];
     o.count_u = s.count[0];
