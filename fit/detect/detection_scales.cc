@@ -7,12 +7,6 @@
 #include "model/median.h"
 
 namespace implicitfit {
-namespace {
-
-constexpr double kMaxNoiseToSpacing = 0.4;     // noisier than this * spacing: a volume
-constexpr double kIncoherentNormalDeg = 15.0;  // median neighbour normal angle of a volume
-
-}  // namespace
 
 DetectionScales EstimateDetectionScales(const std::vector<Eigen::Vector3d>& x,
                                         const std::vector<Eigen::Vector3d>& normals,
@@ -49,8 +43,8 @@ DetectionScales EstimateDetectionScales(const std::vector<Eigen::Vector3d>& x,
   // benchmark clouds), and a dense scan noisier than its spacing still has coherent normals when
   // they come from the scanner or a larger scale. A cloud failing both has no surface at its
   // sampling scale; an explicit threshold overrides this.
-  s.volume = threshold <= 0 && tangent_noise > kMaxNoiseToSpacing * spacing &&
-             median_angle_deg > kIncoherentNormalDeg;
+  s.volume = threshold <= 0 && tangent_noise > kVolumeNoiseToSpacing * spacing &&
+             median_angle_deg > kVolumeNormalAngleDeg;
   s.likelihood_sigma = std::clamp(s.noise, s.threshold / 10, s.threshold / 3);
   return s;
 }

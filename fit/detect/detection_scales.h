@@ -18,6 +18,12 @@
 
 namespace implicitfit {
 
+// The volume test's limits (above): tangent-plane noise over this x spacing and a median
+// neighbour normal angle over this many degrees (also the freeform stage's, per part:
+// fit/splines/local_scales.h).
+constexpr double kVolumeNoiseToSpacing = 0.4;
+constexpr double kVolumeNormalAngleDeg = 15.0;
+
 struct DetectionScales {
   double spacing = 0.0;
   double noise = 0.0;             // sigma

@@ -4,16 +4,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit/detect/detection_scales.h"
 #include "model/median.h"
 
 namespace implicitfit {
 namespace {
 
 constexpr double kMaxBandDeg = 45.0;  // the detector's cap on theta
-// The detector's volume test (fit/detect/detection_scales.cc): noisier than this x spacing and
-// normals disagreeing by more than this median angle.
-constexpr double kMaxNoiseToSpacing = 0.4;
-constexpr double kIncoherentNormalDeg = 15.0;
 
 double Radians(double deg) { return deg * M_PI / 180.0; }
 
@@ -85,8 +82,8 @@ PartScales ScalesOfPart(const LocalScaleFigures& figures, const std::vector<int>
   }
   PartScales s;
   s.noise = std::sqrt(Median(q) / 0.4549);
-  s.volume = 1.4826 * Median(t) > kMaxNoiseToSpacing * Median(spacing) &&
-             Median(a) > Radians(kIncoherentNormalDeg);
+  s.volume = 1.4826 * Median(t) > kVolumeNoiseToSpacing * Median(spacing) &&
+             Median(a) > Radians(kVolumeNormalAngleDeg);
   if (d.spacing > 0) {
     s.threshold = std::max(3.0 * s.noise, 0.1 * d.spacing);
   } else {
