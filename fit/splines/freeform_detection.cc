@@ -80,7 +80,7 @@ class FreeformStage {
     threads_ = ThreadCountOrDefault(o.num_threads);
   }
 
-  // Steps 2-4 of the header on one region.
+  // Steps 2-5 of the header on one region.
   void Process(const std::vector<int>& region, int depth, const char* origin = "small_region") {
     if (static_cast<int>(region.size()) < o_.min_points) {
       ++result_.small_parts;
@@ -106,8 +106,7 @@ class FreeformStage {
     }
     int folded = 0;
     for (const Vec& x : n) folded += x.dot(frame.normal) < std::cos(80.0 * M_PI / 180.0);
-    const bool fold = folded > 0.02 * n.size();
-    if (fold) ++result_.folded;
+    if (folded > 0.02 * n.size()) ++result_.folded;  // counted; fitted as any region (step 2)
     const Candidate best = BestGrid(p, n, frame, scales);
     if (!best.ok) {
       ++result_.no_grid;
