@@ -1,5 +1,6 @@
 #include "fit/bernstein/continuity_projection.h"
 
+#include <Eigen/CholmodSupport>
 #include <Eigen/SPQRSupport>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -10,12 +11,23 @@
 
 namespace implicitfit {
 
+namespace {
+constexpr int kMaxMultiplierSteps = 100;
+constexpr double kMultiplierPenalty = 1e8;  // mu x mean diag(Gh^T Gh) (header)
+}  // namespace
+
 // The projection in the domain-point unknowns (header): w = D^-1 P^T b, v = D^1/2 w, then
-// v <- v - Gh^T y*, y* the least-squares solution of Gh^T y ~ v (twice), b = P D^-1/2 v.
+// v <- v - Gh^T y*, y* the least-squares solution of Gh^T y ~ v (twice; uniform grids), or the
+// multiplier steps v <- (I + mu Gh^T Gh)^-1 v (refined grids); b = P D^-1/2 v.
 struct ContinuityProjector::Factor {
   using SpqrMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
   SpqrMatrix Ght;  // (G D^-1/2)^T, G = C1 P; empty for continuity 0
-  Eigen::SPQR<SpqrMatrix> qr;
+  Eigen::SPQR<SpqrMatrix> qr;  // uniform grids
+  // Refined grids: Gh^T as a plain sparse matrix and the factor of I + mu Gh^T Gh.
+  bool multipliers = false;
+  Eigen::SparseMatrix<double> ght;
+  double mu = 0;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> penalised;
   C0Parametrization c0;    // P, and the unknown every non-hanging control point equals
   Eigen::VectorXd copies;  // D: control points equal to each unknown
 };
@@ -38,9 +50,22 @@ ContinuityProjector::ContinuityProjector(const BernsteinGrid& grid, int k, int c
       ts.emplace_back(it.col(), r, it.value() / std::sqrt(factor_->copies[it.col()]));
   factor_->Ght.resize(nd, G.rows());
   factor_->Ght.setFromTriplets(ts.begin(), ts.end());
-  factor_->qr.compute(factor_->Ght);
-  if (factor_->qr.info() != Eigen::Success)
-    throw std::runtime_error("continuity projection: SuiteSparseQR failed");
+  if (grid.MaxLevel() == 0) {
+    factor_->qr.compute(factor_->Ght);
+    if (factor_->qr.info() != Eigen::Success)
+      throw std::runtime_error("continuity projection: SuiteSparseQR failed");
+    return;
+  }
+  factor_->multipliers = true;
+  factor_->ght = Eigen::SparseMatrix<double>(factor_->Ght.cast<double>());
+  const Eigen::SparseMatrix<double> gram =
+      factor_->ght * Eigen::SparseMatrix<double>(factor_->ght.transpose());
+  factor_->mu = kMultiplierPenalty / std::max(gram.diagonal().mean(), 1e-300);
+  Eigen::SparseMatrix<double> identity(nd, nd);
+  identity.setIdentity();
+  factor_->penalised.compute(identity + factor_->mu * gram);
+  if (factor_->penalised.info() != Eigen::Success)
+    throw std::runtime_error("continuity projection: CHOLMOD failed on I + mu Gh^T Gh");
 }
 
 ContinuityProjector::~ContinuityProjector() = default;
@@ -55,11 +80,22 @@ double ContinuityProjector::Project(std::vector<double>* b) const {
   for (size_t i = 0; i < f.c0.identity.size(); ++i)
     if (f.c0.identity[i] >= 0) v[f.c0.identity[i]] += (*b)[i];
   v.array() /= f.copies.array().sqrt();  // D^1/2 w, w the mean of each unknown's copies
-  if (continuity_ == 1 && f.Ght.cols() > 0)
+  if (continuity_ == 1 && f.Ght.cols() > 0 && f.multipliers) {
+    // v - (I + mu M)^-1 v = (I + mu M)^-1 mu M v (M = Gh Gh^T): solving for the step, whose
+    // right-hand side shrinks with the defect, keeps the solve's rounding relative to the step
+    // instead of to v (a global quadric moved by 5e-6 of max |b| the other way).
+    const double scale = std::max(v.cwiseAbs().maxCoeff(), 1e-300);
+    for (int step = 0; step < kMaxMultiplierSteps; ++step) {
+      const Eigen::VectorXd defect = f.ght.transpose() * v;
+      if (defect.size() == 0 || defect.cwiseAbs().maxCoeff() <= 1e-15 * scale) break;
+      v -= f.penalised.solve(f.mu * (f.ght * defect));
+    }
+  } else if (continuity_ == 1 && f.Ght.cols() > 0) {
     for (int pass = 0; pass < 2; ++pass) {
       const Eigen::VectorXd y = f.qr.solve(v);
       v -= f.Ght * y;
     }
+  }
   v.array() /= f.copies.array().sqrt();  // w
   const Eigen::VectorXd projected = f.c0.P * v;
   std::copy(projected.data(), projected.data() + projected.size(), b->data());
