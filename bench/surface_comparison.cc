@@ -19,7 +19,7 @@
 //                                [--scan-cells n2 (the further scan rows' cubes; default: --cells)]
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
 //                                [--far-field-relaxation r] [--far-field-floor f]
-//                                [--sign-guard-samples s] (MeshFitOptions, step 2)
+//                                [--sign-guard-samples s] [--normal-weight w] (MeshFitOptions, step 2)
 //                                [--save-meshes DIR (every method's mesh as
 //                                DIR/<cloud>-<method>.ply)]
 #include <sys/resource.h>
@@ -316,6 +316,8 @@ Options ParseOptions(int argc, char** argv) {
       f.min_leaf_spacings = std::atof(value);
     else if (!std::strcmp(name, "--max-unknowns"))
       f.max_unknowns = std::atoll(value);
+    else if (!std::strcmp(name, "--normal-weight"))
+      f.normal_weight = std::atof(value);
     else if (!std::strcmp(name, "--mesh-cells"))
       o.mesh_cells = std::atoi(value);
   }
