@@ -21,9 +21,9 @@ constexpr double kMultiplierPenalty = 1e8;  // mu x mean diag(Gh^T Gh) (header)
 // multiplier steps v <- (I + mu Gh^T Gh)^-1 v (refined grids); b = P D^-1/2 v.
 struct ContinuityProjector::Factor {
   using SpqrMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
-  SpqrMatrix Ght;  // (G D^-1/2)^T, G = C1 P; empty for continuity 0
+  SpqrMatrix Ght;  // (G D^-1/2)^T, G = C1 P; empty for continuity 0 and on refined grids
   Eigen::SPQR<SpqrMatrix> qr;  // uniform grids
-  // Refined grids: Gh^T as a plain sparse matrix and the factor of I + mu Gh^T Gh.
+  // Refined grids: Gh^T (ght, int indices) and the factor of I + mu Gh^T Gh.
   bool multipliers = false;
   Eigen::SparseMatrix<double> ght;
   double mu = 0;
@@ -58,6 +58,7 @@ ContinuityProjector::ContinuityProjector(const BernsteinGrid& grid, int k, int c
   }
   factor_->multipliers = true;
   factor_->ght = Eigen::SparseMatrix<double>(factor_->Ght.cast<double>());
+  factor_->Ght.resize(0, 0);  // the QR's copy is not needed here
   const Eigen::SparseMatrix<double> gram =
       factor_->ght * Eigen::SparseMatrix<double>(factor_->ght.transpose());
   factor_->mu = kMultiplierPenalty / std::max(gram.diagonal().mean(), 1e-300);
@@ -80,10 +81,11 @@ double ContinuityProjector::Project(std::vector<double>* b) const {
   for (size_t i = 0; i < f.c0.identity.size(); ++i)
     if (f.c0.identity[i] >= 0) v[f.c0.identity[i]] += (*b)[i];
   v.array() /= f.copies.array().sqrt();  // D^1/2 w, w the mean of each unknown's copies
-  if (continuity_ == 1 && f.Ght.cols() > 0 && f.multipliers) {
-    // v - (I + mu M)^-1 v = (I + mu M)^-1 mu M v (M = Gh Gh^T): solving for the step, whose
+  if (continuity_ == 1 && f.multipliers) {
+    // v - (I + mu M)^-1 v = (I + mu M)^-1 mu M v (M = Gh^T Gh): solving for the step, whose
     // right-hand side shrinks with the defect, keeps the solve's rounding relative to the step
-    // instead of to v (a global quadric moved by 5e-6 of max |b| the other way).
+    // instead of to v (solving for v itself moved a global quadric's control points by up to
+    // 4.9e-5, test ProjectionKeepsAGlobalQuadricOnARefinedGrid).
     const double scale = std::max(v.cwiseAbs().maxCoeff(), 1e-300);
     for (int step = 0; step < kMaxMultiplierSteps; ++step) {
       const Eigen::VectorXd defect = f.ght.transpose() * v;
