@@ -20,6 +20,8 @@
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
 //                                [--far-field-relaxation r] [--far-field-floor f]
 //                                [--sign-guard-samples s] [--normal-weight w] (MeshFitOptions, step 2)
+//                                [--continuity 0|1] [--soft-c1 w (continuity 0)]
+//                                [--smoothing-weight w]
 //                                [--save-meshes DIR (every method's mesh as
 //                                DIR/<cloud>-<method>.ply)]
 #include <sys/resource.h>
@@ -318,6 +320,13 @@ Options ParseOptions(int argc, char** argv) {
       f.max_unknowns = std::atoll(value);
     else if (!std::strcmp(name, "--normal-weight"))
       f.normal_weight = std::atof(value);
+    else if (!std::strcmp(name, "--continuity"))
+      f.continuity = std::atoi(value);
+    else if (!std::strcmp(name, "--smoothing-weight"))
+      f.smoothing_weight = std::atof(value);
+    else if (!std::strcmp(name, "--soft-c1"))
+      f.soft_c1_weight = std::atof(value);
+
     else if (!std::strcmp(name, "--mesh-cells"))
       o.mesh_cells = std::atoi(value);
   }

@@ -458,6 +458,8 @@ bool MeshFitOptions::IsValid(std::string* error) const {
   if (max_unknowns < 1) return fail("max_unknowns must be >= 1");
   if (!(feature_angle_deg > 0.0 && feature_angle_deg < 180.0))
     return fail("feature_angle_deg must be in (0, 180)");
+  if (!(soft_c1_weight >= 0.0 && std::isfinite(soft_c1_weight)))
+    return fail("soft_c1_weight must be >= 0");
   return true;
 }
 
@@ -563,8 +565,10 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
   const PointData data = LocatePoints(grid, points);
   const ContinuityRows c2 = BernsteinContinuityRows(grid, k, 2, 2);
   const std::vector<bool> c2_keep = EmptyFaceRows(c2, data);
-
-  DomainLeastSquares solver(grid, k, options.continuity, options.continuity_weight,
+  // Continuity 0: the C1 rows as penalties (header, "Soft C1"); the projector stays C0.
+  const bool soft_c1 = options.continuity == 0 && options.soft_c1_weight > 0;
+  DomainLeastSquares solver(grid, k, soft_c1 ? 1 : options.continuity,
+                            soft_c1 ? options.soft_c1_weight : options.continuity_weight,
                             options.smoothing_weight, c2, c2_keep);
   const ContinuityProjector projector(grid, k, options.continuity);
   // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
