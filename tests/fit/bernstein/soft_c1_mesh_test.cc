@@ -1,6 +1,7 @@
-// Soft C1 on a C0 patch mesh (MeshFitOptions::soft_c1_weight, fit/bernstein/bernstein_mesh_fitter.h):
-// on a CAD-like solid with sharp edges (the chamfered block, 3 000 points, noise 0.1% of its
-// size), judged against the generating model, not the fit's own residuals:
+// Soft C1 on a C0 patch mesh (MeshFitOptions::soft_c1_weight,
+// fit/bernstein/bernstein_mesh_fitter.h): on a CAD-like solid with sharp edges (the chamfered
+// block, 3 000 points, noise 0.1% of its size), judged against the generating model, not the fit's
+// own residuals:
 //  - the C0 fit with the C1 rows as penalties stays closer to the model's noise-free points than
 //    the C1 fit on the same grid (which rounds every edge over about a cube);
 //  - it has no spurious surface: at every lattice point of the grid box farther than 0.15 from
