@@ -326,6 +326,8 @@ Options ParseOptions(int argc, char** argv) {
       f.smoothing_weight = std::atof(value);
     else if (!std::strcmp(name, "--soft-c1"))
       f.soft_c1_weight = std::atof(value);
+    else if (!std::strcmp(name, "--soft-c1-sharp"))
+      f.soft_c1_sharp_factor = std::atof(value);
 
     else if (!std::strcmp(name, "--mesh-cells"))
       o.mesh_cells = std::atoi(value);

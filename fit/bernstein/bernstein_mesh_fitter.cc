@@ -460,6 +460,8 @@ bool MeshFitOptions::IsValid(std::string* error) const {
     return fail("feature_angle_deg must be in (0, 180)");
   if (!(soft_c1_weight >= 0.0 && std::isfinite(soft_c1_weight)))
     return fail("soft_c1_weight must be >= 0");
+  if (!(soft_c1_sharp_factor >= 0.0 && std::isfinite(soft_c1_sharp_factor)))
+    return fail("soft_c1_sharp_factor must be >= 0");
   return true;
 }
 
@@ -569,7 +571,8 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
   const bool soft_c1 = options.continuity == 0 && options.soft_c1_weight > 0;
   DomainLeastSquares solver(grid, k, soft_c1 ? 1 : options.continuity,
                             soft_c1 ? options.soft_c1_weight : options.continuity_weight,
-                            options.smoothing_weight, c2, c2_keep);
+                            options.smoothing_weight, c2, c2_keep,
+                            soft_c1 ? options.soft_c1_weight * options.soft_c1_sharp_factor : -1);
   const ContinuityProjector projector(grid, k, options.continuity);
   // far_field_weight = 0 switches the far-field rows (and the fallback's sign check) off.
   std::vector<FarFieldRow> far;

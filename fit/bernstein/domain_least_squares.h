@@ -42,9 +42,10 @@ class DomainLeastSquares {
  public:
   using SparseMatrix = Eigen::SparseMatrix<double>;
   // continuity_weight: of the C1 rows (continuity 1); smoothing_weight: of the kept C2 rows.
+  // sharp_weight >= 0 (soft C1 on a C0 mesh): the sharp faces' C1 rows with that weight.
   DomainLeastSquares(const BernsteinGrid& grid, int k, int continuity, double continuity_weight,
                      double smoothing_weight, const ContinuityRows& c2,
-                     const std::vector<bool>& c2_keep)
+                     const std::vector<bool>& c2_keep, double sharp_weight = -1)
       : grid_(grid),
         k_(k),
         n_(NumBernsteinControlPoints(k)),
@@ -55,10 +56,13 @@ class DomainLeastSquares {
     LocalMaps(c0);
     fixed_.resize(nd_, nd_);
     if (continuity == 1) {
-      const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1);
-      const SparseMatrix G = SparseMatrix(c1.C) * P_;
-      fixed_ +=
-          continuity_weight * continuity_weight * SparseMatrix(G.transpose()) * G;
+      // Soft C1 on a C0 mesh (sharp_weight >= 0): the sharp faces' rows too, with that weight.
+      const ContinuityRows c1 = BernsteinContinuityRows(grid, k, 1, 1, sharp_weight >= 0);
+      Eigen::VectorXd w = Eigen::VectorXd::Constant(c1.C.rows(), continuity_weight);
+      for (Eigen::Index r = 0; r < w.size(); ++r)
+        if (c1.sharp[r]) w[r] = sharp_weight;
+      const SparseMatrix G = w.asDiagonal() * SparseMatrix(c1.C) * P_;
+      fixed_ += SparseMatrix(G.transpose()) * G;
     }
     std::vector<Eigen::Triplet<double>> ts;
     long long r = 0;
