@@ -410,6 +410,10 @@ TriangleMesh FitAndMesh(const Options& o, const Case& c, const PatchRow& row, Ou
   fo.degree = row.degree;
   fo.cells = row.cells;
   fo.convex = row.convex;
+  if (row.convex) {  // certified fits are C1 on a uniform grid
+    fo.adaptive = false;
+    fo.continuity = 1;
+  }
   const implicitfit::MeshFitResult r = implicitfit::FitBernsteinMesh(c.points, c.normals, fo);
   out->patches = r.tetrahedra;
   out->fit_rms = r.rms;

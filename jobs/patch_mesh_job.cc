@@ -12,6 +12,7 @@ nlohmann::json PatchMeshJobOptions::Settings() const {
           {"cells", fit.cells},
           {"cell", fit.cell},
           {"continuity", fit.continuity},
+          {"levels", fit.adaptive ? fit.max_levels : 0},
           {"convex", fit.convex}};
 }
 
@@ -61,6 +62,15 @@ nlohmann::json PatchMeshJobResult::ToJson(const ReportHeader& header) const {
                       {"box_sign_errors", r.box_sign_errors},
                       {"seconds", r.seconds},
                       {"normals", normals}};
+  if (options.fit.adaptive)  // --levels: what the refinement read from the cloud and built
+    j["refinement"] = {{"noise", r.noise},
+                       {"spacing", r.spacing},
+                       {"residual_threshold", r.residual_threshold},
+                       {"levels", r.levels},
+                       {"leaves", r.leaves},
+                       {"sharp_faces", r.sharp_faces},
+                       {"rounds", r.rounds},
+                       {"rejected_rounds", r.rejected_rounds}};
   return WithJobReportHeader(std::move(j), header, "fit", options.Settings());
 }
 

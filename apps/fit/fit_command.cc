@@ -40,6 +40,7 @@ struct FitArgs {
   int cells = 0;
   double cell = 0.0;
   int continuity = 1;
+  int levels = 0;
   std::string grid, child = "plane";
   std::string view, ply;                 // --view PAGE.html, --ply RESIDUALS.ply
   std::optional<std::vector<int>> inliers;  // of a primitive fit, for the view and the PLY
@@ -101,8 +102,14 @@ CommandAction AddFitCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->excludes(cells_opt)
       ->group("Bernstein patches");
-  cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 (C0) or 1 (C1, default)")
+  cmd->add_option("--continuity", a->continuity,
+                  "patch-mesh: 0 (C0, with C1 as a penalty off the creases) or 1 (C1, default)")
       ->check(CLI::Range(0, 1))
+      ->group("Bernstein patches");
+  cmd->add_option("--levels", a->levels,
+                  "patch-mesh: refine the cubes whose points' residuals exceed the noise, up to "
+                  "L levels below the base grid (octree; crease leaves C0; default 0: uniform)")
+      ->check(CLI::Range(0, 6))
       ->group("Bernstein patches");
   cmd->add_option("--grid", a->grid,
                   "partition: A x B x C cells at equal spacing over the cloud's box + 5%, e.g. "
@@ -139,6 +146,7 @@ CommandAction AddFitCommand(CLI::App& app) {
     request.cells = a->cells;
     request.cell = a->cell;
     request.continuity = a->continuity;
+    request.levels = a->levels;
     request.grid = a->grid;
     request.child = a->child;
     if (a->kind != "partition" && a->kind != "bspline-surface" && !a->grid.empty())

@@ -1,5 +1,5 @@
 // fit CLOUD --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1]
-//     [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh (implicitfit/patch_mesh.h).
+//     [--levels L] [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh (implicitfit/patch_mesh.h).
 // Exit 0 success; 1 the fit failed or (--convex) the certificate failed, no model written; 2
 // invalid usage or input.
 #include <cstdio>
@@ -23,6 +23,8 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
   options.fit.cell = request.cell;
   options.fit.continuity = request.continuity;
   options.fit.convex = request.convex;
+  options.fit.adaptive = request.levels > 0;
+  options.fit.max_levels = request.levels;
   if (!request.tetrahedron.empty())
     throw InputError("--tetrahedron applies to quadric-patch and cubic-patch");
   std::string error;

@@ -37,6 +37,7 @@ struct ModelFitRequest {
   int cells = 0;                // patch-mesh: --cells (0: default)
   double cell = 0.0;            // patch-mesh: --cell (0: from cells)
   int continuity = 1;           // patch-mesh: --continuity
+  int levels = 0;               // patch-mesh: --levels (> 0: adaptive refinement)
   std::string grid;             // partition: --grid AxBxC
   std::string child = "plane";  // partition: --child plane|quadric
 };

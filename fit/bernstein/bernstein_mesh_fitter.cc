@@ -431,6 +431,10 @@ bool MeshFitOptions::IsValid(std::string* error) const {
   if (continuity != 0 && continuity != 1) return fail("continuity must be 0 or 1");
   if (convex && continuity != 1)
     return fail("convex needs continuity 1 (convex patches joined C0 can meet at a concave kink)");
+  if (convex && adaptive && max_levels > 0)
+    return fail(
+        "convex needs a uniform grid (no refinement levels: the certificate wants C1 on every "
+        "face)");
   if (cells < 0 || cells > 200) return fail("cells must be in 1..200");
   if (!(cell >= 0.0) || !std::isfinite(cell)) return fail("cell must be a positive length");
   if (!(far_field_beside_cos >= 0.0 && far_field_beside_cos < 1.0))

@@ -7,8 +7,10 @@
 //    "grid": {"origin", "cell", "cells"}, "patches", "rms_distance", "initial_rms_distance",
 //    "unconstrained_rms_distance", "mean_normal_angle_deg", "continuity_defect",
 //    "convex_constraint", "certified_tetrahedra", "certified_convex", "min_eigenvalue",
-//    "iterations", "kept_initialisation", "box_sign_errors", "seconds", "normals"} and the header
-//   of jobs/report_header.h.
+//    "iterations", "kept_initialisation", "box_sign_errors", "seconds", "normals"}, with
+//   --levels (MeshFitOptions::adaptive) "refinement": {"noise", "spacing",
+//   "residual_threshold", "levels", "leaves", "sharp_faces", "rounds", "rejected_rounds"}, and
+//   the header of jobs/report_header.h.
 // Only include/implicitfit/*.h is public API (see implicitfit/model.h).
 #pragma once
 
@@ -29,7 +31,7 @@ struct PatchMeshJobOptions {
   // MeshFitOptions::IsValid: false (with a reason naming the option) for a degree outside
   // 2..5, a continuity other than 0 or 1, convex without continuity 1, ...
   bool IsValid(std::string* error) const;
-  // The "settings" of the report: degree, cells, cell, continuity, convex.
+  // The "settings" of the report: degree, cells, cell, continuity, levels, convex.
   nlohmann::json Settings() const;
 };
 
