@@ -43,7 +43,7 @@ struct BatchArgs {
   double threshold = 0.0;
   std::string estimator = "robust";
   bool convex = false;  // Bernstein kinds (apps/fit/fit_model_kinds.h)
-  int degree = 0, cells = 0, continuity = 1;
+  int degree = 0, cells = 0, continuity = 1, levels = 0;
   double cell = 0.0;
 };
 
@@ -79,6 +79,7 @@ nlohmann::json BatchSettings(const BatchArgs& a, bool scene, bool solid, bool mo
     s["cells"] = a.cells;
     s["cell"] = a.cell;
     s["continuity"] = a.continuity;
+    s["levels"] = a.levels;
     return s;
   }
   s["seed"] = a.seed;
@@ -103,6 +104,7 @@ void SetBernsteinFit(const BatchArgs& a, BatchOptions* options) {
   request.cells = a.cells;
   request.cell = a.cell;
   request.continuity = a.continuity;
+  request.levels = a.levels;
   const bool mesh = IsMeshKind(a.kind);
   options->model_kind = mesh ? NodeType::kBernsteinMesh : NodeType::kBernsteinPatch;
   options->require_certified = a.convex;
@@ -167,6 +169,9 @@ CommandAction AddBatchCommand(CLI::App& app) {
       ->group("Bernstein patches");
   cmd->add_option("--continuity", a->continuity, "patch-mesh: 0 or 1 (default)")
       ->check(CLI::Range(0, 1))
+      ->group("Bernstein patches");
+  cmd->add_option("--levels", a->levels, "patch-mesh: refinement levels (as `fit --levels`)")
+      ->check(CLI::Range(0, 6))
       ->group("Bernstein patches");
   cmd->add_option("--out-dir", a->out_dir,
                   "Folder of the models, reports and summary.csv (created)")
