@@ -1,5 +1,6 @@
 // fit CLOUD --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1]
-//     [--levels L] [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh (implicitfit/patch_mesh.h).
+//     [--levels L] [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh
+//     (implicitfit/patch_mesh.h).
 // Exit 0 success; 1 the fit failed or (--convex) the certificate failed, no model written; 2
 // invalid usage or input.
 #include <cstdio>

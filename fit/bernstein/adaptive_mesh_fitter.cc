@@ -145,7 +145,7 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
     // C0 (soft C1): the far-field relaxation starts over on the finer grid. From the relaxed
     // weight the guard, recorded at the start, refused every step of the refined round (288
     // samples changed by the first full step, 8 by a sixteenth of it on the chamfered block),
-    // so the round was dropped; restarted, it is kept (one level 0.00186 -> 0.00152). C1 fits
+    // so the round was dropped; restarted, it is kept (one level 0.00186 -> 0.00157). C1 fits
     // keep the weight reached (restarting there: one level 0.00515 -> 0.00585).
     start.far_weight = options.continuity == 0 ? options.far_field_weight : fit.far_weight;
     MeshFitResult next = FitBernsteinMeshOnGrid(points, normals, options, finer, &start);

@@ -86,9 +86,10 @@
 // one cube against 64 for C0) and rounds a crease over about a cube; a bare C0 spline follows
 // the data but its free domain points between the far-field lattice's rows grow blobs in empty
 // space (chamfered block, 8 cubes: Chamfer 0.060, 560 open edges). With continuity 0 the C1
-// rows b'_{lambda + e5} - sum_{|nu| = 1} b_{lambda + nu} B^1_nu(alpha) of every face (not of
-// sharp faces) enter the same least squares as penalties of weight soft_c1_weight, so f is as
-// smooth as the data allow and may kink where they demand; no projection (the file declares C0).
+// rows b'_{lambda + e5} - sum_{|nu| = 1} b_{lambda + nu} B^1_nu(alpha) of every face (sharp
+// faces at soft_c1_sharp_factor of it) enter the same least squares as penalties of weight
+// soft_c1_weight, so f is as smooth as the data allow and may kink where they demand; no
+// projection (the file declares C0).
 // Measured (bench/surface_comparison, 8 cubes, degree 3; docs/patch-mesh.md): chamfered block
 // 0.00616 (C1) -> 0.00190, bracket 0.01216 -> 0.00246, kitten 0.00600 -> 0.00473; weights 0.1,
 // 0.3, 1, 3 gave 0.00172 (a Hausdorff 0.127 blob), 0.00188 (0.130), 0.00190 (0.026), 0.00314.
@@ -115,8 +116,8 @@ struct MeshFitOptions {
   int max_iterations = 100;           // Ceres iterations
   double continuity_weight = 1e4;     // weight of the continuity rows before the projection
   double smoothing_weight = 0.1;      // weight of the C2 rows on faces of empty tetrahedra
-  // Continuity 0: the C1 rows of every face but the sharp ones as penalties of this weight
-  // (header, "Soft C1"); 0: none (a bare C0 fit, which grows blobs in empty space).
+  // Continuity 0: the C1 rows of every face as penalties of this weight (header, "Soft C1");
+  // 0: none (a bare C0 fit, which grows blobs in empty space).
   double soft_c1_weight = 1.0;
   // The sharp faces' C1 rows (adaptive fits: the crease leaves) with soft_c1_weight x this: a
   // crease may bend more, but not freely (0, as C1 fits do: blobs at the creases; chamfered
