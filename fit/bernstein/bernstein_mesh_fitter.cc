@@ -457,6 +457,7 @@ bool MeshFitOptions::IsValid(std::string* error) const {
     return fail("refine_spacing_floor must be >= 0");
   if (!(min_leaf_spacings >= 0.0 && std::isfinite(min_leaf_spacings)))
     return fail("min_leaf_spacings must be >= 0");
+  if (round_retries < 0 || round_retries > 8) return fail("round_retries must be in 0..8");
   if (max_levels < 0 || max_levels > kMaxRefinementLevel)
     return fail("max_levels must be in 0.." + std::to_string(kMaxRefinementLevel));
   if (max_unknowns < 1) return fail("max_unknowns must be >= 1");

@@ -92,15 +92,22 @@ void EmptySpaceSignGuard::Record(int degree, const std::vector<double>& control_
 
 long long EmptySpaceSignGuard::Changes(int degree,
                                        const std::vector<double>& control_points) const {
+  return static_cast<long long>(Tripped(degree, control_points).size());
+}
+
+std::vector<Eigen::Vector3d> EmptySpaceSignGuard::Tripped(int degree,
+                                                          const std::vector<double>& control_points,
+                                                          bool signs_only) const {
   if (signs_.size() != samples_.size() || degree != degree_)
     throw std::logic_error("EmptySpaceSignGuard::Changes before Record (or another degree)");
-  long long changes = 0;
+  std::vector<Eigen::Vector3d> tripped;
   for (size_t s = 0; s < samples_.size(); ++s) {
+    if (!clear_[s]) continue;
     double e;
     const double f = ValueAndDistance(grid_, degree, control_points, samples_[s], &e);
-    changes += clear_[s] && (SignOf(f) != signs_[s] || e <= rho_);
+    if (SignOf(f) != signs_[s] || (!signs_only && e <= rho_)) tripped.push_back(samples_[s]);
   }
-  return changes;
+  return tripped;
 }
 
 }  // namespace implicitfit

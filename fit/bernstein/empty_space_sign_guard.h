@@ -1,6 +1,7 @@
 // Watches the sign of a patch-mesh f (model/bernstein/bernstein_mesh.h) away from the data, to reject a fit
 // step that grows a new spurious component (a closed blob or a sheet in empty space) which the
-// far-field rows' coarser lattice (spacing h/2, fit/bernstein/bernstein_mesh_fitter.cc) does not see.
+// far-field rows' coarser lattice (spacing half a leaf's edge, fit/bernstein/far_field_rows.h)
+// does not see.
 //
 // Samples: the points of a lattice of spacing s = h / samples_per_cube over the grid box that lie
 // farther than `band` from every input point (found with a bucket grid of cube edge h: only the
@@ -31,6 +32,9 @@ class EmptySpaceSignGuard {
 
   void Record(int degree, const std::vector<double>& control_points);
   long long Changes(int degree, const std::vector<double>& control_points) const;
+  // The samples Changes() counts; with signs_only, only those whose sign changed.
+  std::vector<Eigen::Vector3d> Tripped(int degree, const std::vector<double>& control_points,
+                                       bool signs_only = false) const;
   long long size() const { return static_cast<long long>(samples_.size()); }
 
  private:

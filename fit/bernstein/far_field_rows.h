@@ -1,13 +1,14 @@
 // Far-field rows of the patch-mesh fit (fit/bernstein/bernstein_mesh_fitter.h, step 1).
-// Far-field rows: at the points x of a lattice of spacing h/2 farther than `band` from every
-// input point, the target f(x) = (x - p) . n_p with p the nearest input point (Hoppe's signed
-// tangent-plane distance), so that f keeps the outside/inside sign of the closest data away
-// from the surface and no spurious sheet crosses empty cells; on the faces of the grid box the
-// target is +|x - p| instead (outside), so that f > 0 on the whole box boundary and the zero set
-// closes inside the box (an open scan, e.g. oni's unscanned base, is capped instead of leaving
-// the box). A lattice point x whose direction from p makes more than acos(beside_cos) (60
-// degrees) with n_p lies beside the data, beyond an open rim, rather than above or below it: the
-// tangent-plane sign says nothing there, and the target is +|x - p| (outside) too, so that the
+// Far-field rows: at the points x of a lattice of spacing half a leaf's edge (h/2 on a uniform
+// grid; h / 2^(L+1) in a refined leaf of level L, so that finer leaves get rows as dense as
+// their cells) farther than `band` from every input point, the target f(x) = (x - p) . n_p
+// with p the nearest input point (Hoppe's signed tangent-plane distance), so that f keeps the
+// outside/inside sign of the closest data away from the surface and no spurious sheet crosses
+// empty cells; on the faces of the grid box the target is +|x - p| instead (outside), so that
+// f > 0 on the whole box boundary and the zero set closes inside the box (an open scan, e.g.
+// oni's unscanned base, is capped instead of leaving the box). A lattice point x whose direction
+// from p makes more than acos(beside_cos) (60 degrees) with n_p lies beside the data, beyond an
+// open rim, rather than above or below it: the tangent-plane sign says nothing there, and the target is +|x - p| (outside) too, so that the
 // cap of an open scan closes near its rim instead of at the box (oni: Chamfer 0.0227 -> 0.0209).
 // With `winding` (the default, MeshFitOptions::far_field_winding), the sign of a row off the
 // box comes from the generalised winding number w of the cloud instead (fit/bernstein/winding_number.h:
