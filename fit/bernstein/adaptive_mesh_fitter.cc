@@ -185,8 +185,11 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
       const double band = 0.02 * (finer.BoxMax() - finer.BoxMin()).norm();
       EmptySpaceSignGuard guard(finer, points, band, options.sign_guard_samples);
       guard.Record(k, start.control_points);
-      const std::vector<Vec> grew = guard.Tripped(k, next.control_points);
-      if (!flip_free && guard.Tripped(k, next.control_points, true).empty()) flip_free = next;
+      const std::vector<EmptySpaceSignGuard::Trip> grew = guard.Tripped(k, next.control_points);
+      if (!flip_free && std::none_of(grew.begin(), grew.end(), [](const auto& g) {
+            return g.sign_changed;
+          }))
+        flip_free = next;
       if (grew.empty()) {
         kept = true;
         break;
@@ -194,8 +197,8 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
       for (long long q = 0; q < fit.grid.NumLeaves(); ++q) {
         const Tetrahedron first = fit.grid.TetrahedronOf(6 * q);
         const Vec lo = first.vertex(0), hi = first.vertex(3);
-        for (const Vec& x : grew)
-          if ((x - x.cwiseMax(lo).cwiseMin(hi)).lpNorm<Eigen::Infinity>() <=
+        for (const EmptySpaceSignGuard::Trip& g : grew)
+          if ((g.x - g.x.cwiseMax(lo).cwiseMin(hi)).lpNorm<Eigen::Infinity>() <=
               (attempt + 1) * fit.grid.cell) {
             frozen[q] = true;
             break;

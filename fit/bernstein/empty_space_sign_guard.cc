@@ -95,17 +95,17 @@ long long EmptySpaceSignGuard::Changes(int degree,
   return static_cast<long long>(Tripped(degree, control_points).size());
 }
 
-std::vector<Eigen::Vector3d> EmptySpaceSignGuard::Tripped(int degree,
-                                                          const std::vector<double>& control_points,
-                                                          bool signs_only) const {
+std::vector<EmptySpaceSignGuard::Trip> EmptySpaceSignGuard::Tripped(
+    int degree, const std::vector<double>& control_points) const {
   if (signs_.size() != samples_.size() || degree != degree_)
     throw std::logic_error("EmptySpaceSignGuard::Changes before Record (or another degree)");
-  std::vector<Eigen::Vector3d> tripped;
+  std::vector<Trip> tripped;
   for (size_t s = 0; s < samples_.size(); ++s) {
     if (!clear_[s]) continue;
     double e;
     const double f = ValueAndDistance(grid_, degree, control_points, samples_[s], &e);
-    if (SignOf(f) != signs_[s] || (!signs_only && e <= rho_)) tripped.push_back(samples_[s]);
+    const bool sign_changed = SignOf(f) != signs_[s];
+    if (sign_changed || e <= rho_) tripped.push_back({samples_[s], sign_changed});
   }
   return tripped;
 }

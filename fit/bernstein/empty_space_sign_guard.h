@@ -32,9 +32,13 @@ class EmptySpaceSignGuard {
 
   void Record(int degree, const std::vector<double>& control_points);
   long long Changes(int degree, const std::vector<double>& control_points) const;
-  // The samples Changes() counts; with signs_only, only those whose sign changed.
-  std::vector<Eigen::Vector3d> Tripped(int degree, const std::vector<double>& control_points,
-                                       bool signs_only = false) const;
+  // The samples Changes() counts, each with whether its sign changed (else the zero set only
+  // came within rho).
+  struct Trip {
+    Eigen::Vector3d x;
+    bool sign_changed;
+  };
+  std::vector<Trip> Tripped(int degree, const std::vector<double>& control_points) const;
   long long size() const { return static_cast<long long>(samples_.size()); }
 
  private:

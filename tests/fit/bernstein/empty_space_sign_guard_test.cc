@@ -87,11 +87,13 @@ TEST_F(EmptySpaceSignGuardTest, SmallBlobBetweenSamplesIsCaught) {
         ASSERT_GT(Sphere(centre, 0.05)(Vec(1 + i / 6.0, 1 + j / 6.0, 1 + l / 6.0)), 0.0);
   EXPECT_GT(guard.Changes(2, with_blob), 0);
   // Tripped() names the samples: all near the blob (within 2 rho + its radius of its centre,
-  // rho = sqrt(3)/12); no sign changed, so none with signs_only.
-  const std::vector<Vec> tripped = guard.Tripped(2, with_blob);
+  // rho = sqrt(3)/12), and none changed sign.
+  const std::vector<EmptySpaceSignGuard::Trip> tripped = guard.Tripped(2, with_blob);
   EXPECT_EQ(static_cast<long long>(tripped.size()), guard.Changes(2, with_blob));
-  for (const Vec& x : tripped) EXPECT_LT((x - centre).norm(), 0.05 + std::sqrt(3.0) / 6);
-  EXPECT_TRUE(guard.Tripped(2, with_blob, true).empty());
+  for (const EmptySpaceSignGuard::Trip& t : tripped) {
+    EXPECT_LT((t.x - centre).norm(), 0.05 + std::sqrt(3.0) / 6);
+    EXPECT_FALSE(t.sign_changed);
+  }
   // The far side of the box turning inside out is a plain sign change.
   const std::vector<double> flipped = Mesh(grid_, [&](long long t) {
     CartesianQuadric q = Sphere(Vec::Zero(), 1.0);
@@ -99,10 +101,14 @@ TEST_F(EmptySpaceSignGuardTest, SmallBlobBetweenSamplesIsCaught) {
     return q;
   });
   EXPECT_GT(guard.Changes(2, flipped), 0);
-  // Every sample of that cube's interior changed sign (and lies in the cube).
-  const std::vector<Vec> signs = guard.Tripped(2, flipped, true);
-  EXPECT_GE(signs.size(), 5u * 5u * 5u);
-  for (const Vec& x : signs) EXPECT_TRUE((x.array() >= 1 - 1e-12).all()) << x.transpose();
+  // Every sample of that cube's interior changed sign (and every change lies in the cube).
+  long long changed = 0;
+  for (const EmptySpaceSignGuard::Trip& t : guard.Tripped(2, flipped))
+    if (t.sign_changed) {
+      ++changed;
+      EXPECT_TRUE((t.x.array() >= 1 - 1e-12).all()) << t.x.transpose();
+    }
+  EXPECT_GE(changed, 5 * 5 * 5);
 }
 
 // An open scan: the data is the sphere's cap z > 0.3; its lower part is the closure in empty
