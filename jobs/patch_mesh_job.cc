@@ -5,6 +5,19 @@
 
 namespace implicitfit {
 
+PatchMeshJobOptions PatchMeshJobOptions::FromCommandLine(int degree, int cells, double cell,
+                                                         int continuity, int levels, bool convex) {
+  PatchMeshJobOptions options;
+  options.fit.degree = degree;
+  options.fit.cells = cells;
+  options.fit.cell = cell;
+  options.fit.continuity = continuity;
+  options.fit.convex = convex;
+  options.fit.adaptive = levels > 0;
+  options.fit.max_levels = levels;
+  return options;
+}
+
 bool PatchMeshJobOptions::IsValid(std::string* error) const { return fit.IsValid(error); }
 
 nlohmann::json PatchMeshJobOptions::Settings() const {

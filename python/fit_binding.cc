@@ -1,4 +1,4 @@
-// implicitfit.fit, fit_tree, fit_patch: the library's fitters (fit/*.h) on NumPy arrays, with
+// implicitfit.fit, fit_tree, fit_patch, fit_patch_mesh: the library's fitters (fit/*.h) on NumPy arrays, with
 // the same reports as `implicitfit fit --report` (fit/common/fit_report.h). The arrays are copied
 // once into the library's vectors, then the GIL is released for the whole fit (normal estimation
 // included), so Python threads can run fits in parallel.
@@ -28,6 +28,7 @@
 #include "fit/metrology/primitive_tangent.h"
 #include "fit/primitive/primitive_fitter.h"
 #include "fit/tree/tree_fitter.h"
+#include "implicitfit/patch_mesh.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
 #include "python/input_cloud.h"
@@ -119,6 +120,32 @@ FitResult PatchFitResultOf(const PatchFitOutput& out) {
 FitResult PatchFit(const py::handle& points, const py::handle& normals, int degree, bool convex,
                    const py::handle& tetrahedron) {
   return PatchFitResultOf(RunPatchFit(points, normals, degree, convex, tetrahedron));
+}
+
+// As `implicitfit fit CLOUD --model patch-mesh` (apps/fit/fit_mesh_kind.cc): the same options,
+// the same job (implicitfit/patch_mesh.h), so the same model and report.
+FitResult PatchMeshFit(const py::handle& points, const py::handle& normals, int degree,
+                       int cells, double cell, int continuity, int levels, bool convex) {
+  if (levels < 0) throw py::value_error("levels: must be >= 0, got " + std::to_string(levels));
+  const PatchMeshJobOptions options =
+      PatchMeshJobOptions::FromCommandLine(degree, cells, cell, continuity, levels, convex);
+  std::string error;
+  if (!options.IsValid(&error)) throw py::value_error(error);
+  InputCloud in = ReadInputCloud(points, normals, 1);
+  PatchMeshJobResult job;
+  {
+    py::gil_scoped_release release;
+    EstimateNormalsIfMissing(&in);
+    job = FitPatchMeshJob(in.cloud.points, in.cloud.normals, options, in.action);
+  }
+  FitResult fit;
+  fit.success = job.success;
+  if (job.success) fit.model = py::cast(job.ToModel());
+  std::vector<int> all(job.success ? in.cloud.size() : 0);
+  std::iota(all.begin(), all.end(), 0);
+  fit.inliers = ArrayFromIndices(all);
+  fit.report = ToPython(job.ToJson());
+  return fit;
 }
 
 // As EstimateNormalsIfMissing, then the command line's trust rule for primitive fits
@@ -234,7 +261,7 @@ FitResult TreeFit(const py::handle& points, const py::handle& normals, const Mod
 void BindFits(py::module_& m) {
   py::class_<FitResult> fit_result(
       m, "FitResult",
-      "The result of fit(), fit_tree() and fit_patch(): model (Model or None), success, inliers\n"
+      "The result of fit(), fit_tree(), fit_patch() and fit_patch_mesh(): model (Model or None), success, inliers\n"
       "(int64 indices of the points the final fit used, ascending), report (dict). Unpacks as\n"
       "(model, report): `model, report = fit(...)`.");
   fit_result.def_readonly("model", &FitResult::model, "The fitted Model, None when the fit failed")
@@ -271,6 +298,16 @@ void BindFits(py::module_& m) {
         "`implicitfit fit CLOUD --model quadric-patch`. tetrahedron: (4, 3) vertices (None: one\n"
         "enclosing the cloud). Returns a FitResult (model, success, inliers: every point,\n"
         "report; unpacks as (model, report)).");
+  m.def("fit_patch_mesh", &PatchMeshFit, py::arg("points"), py::arg("normals") = py::none(),
+        py::arg("degree") = 3, py::arg("cells") = 0, py::arg("cell") = 0.0,
+        py::arg("continuity") = 1, py::arg("levels") = 0, py::arg("convex") = false,
+        "Fits a mesh of Bernstein patches on a Kuhn grid over the cloud's box, as `implicitfit\n"
+        "fit CLOUD --model patch-mesh`: degree 2..5, cells (cubes on the longest side; 0: from\n"
+        "the cloud) or cell (the cube edge), continuity 0 (C0 with soft C1, for CAD parts) or 1,\n"
+        "levels: refine L times where the residuals exceed the noise (report[\"refinement\"]),\n"
+        "convex: C1, constrained and certified convex on the whole box (not with levels).\n"
+        "Returns a FitResult (model, success, inliers: every point, report; unpacks as (model,\n"
+        "report)); model is None when the fit fails (report[\"message\"] says why).");
 }
 
 }  // namespace implicitfit::python

@@ -36,7 +36,7 @@ class Model:
         """The root node's type: "sphere", "union", "bernstein_patch", ..."""
 
 class FitResult:
-    """The result of fit(), fit_tree() and fit_patch(); unpacks as (model, report)."""
+    """The result of fit(), fit_tree(), fit_patch() and fit_patch_mesh(); unpacks as (model, report)."""
 
     model: Optional[Model]  # None when the fit failed
     success: bool
@@ -136,6 +136,18 @@ def fit_patch(
     tetrahedron: Optional[_Points] = None,
 ) -> FitResult:
     """A Bernstein patch of degree 2..4, as `implicitfit fit CLOUD --model quadric-patch`."""
+
+def fit_patch_mesh(
+    points: _Points,
+    normals: Optional[_Points] = None,
+    degree: int = 3,
+    cells: int = 0,
+    cell: float = 0.0,
+    continuity: int = 1,
+    levels: int = 0,
+    convex: bool = False,
+) -> FitResult:
+    """A C0/C1 mesh of Bernstein patches, as `implicitfit fit CLOUD --model patch-mesh`."""
 
 def read_cloud(path: _Path, estimate: bool = False) -> Tuple[_Array, Optional[_Array]]:
     """(points, normals or None) of a .xyz/.pwn/.txt/.ply/.pcd file."""

@@ -18,14 +18,9 @@ namespace implicitfit {
 bool IsMeshKind(const std::string& kind) { return kind == "patch-mesh"; }
 
 ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
-  PatchMeshJobOptions options;
-  options.fit.degree = request.degree > 0 ? request.degree : 3;
-  options.fit.cells = request.cells;
-  options.fit.cell = request.cell;
-  options.fit.continuity = request.continuity;
-  options.fit.convex = request.convex;
-  options.fit.adaptive = request.levels > 0;
-  options.fit.max_levels = request.levels;
+  const PatchMeshJobOptions options = PatchMeshJobOptions::FromCommandLine(
+      request.degree > 0 ? request.degree : 3, request.cells, request.cell, request.continuity,
+      request.levels, request.convex);
   if (!request.tetrahedron.empty())
     throw InputError("--tetrahedron applies to quadric-patch and cubic-patch");
   std::string error;

@@ -27,6 +27,10 @@
 namespace implicitfit {
 
 struct PatchMeshJobOptions {
+  // The options of `fit --model patch-mesh --degree k --cells n --cell h --continuity c
+  // --levels L [--convex]` (levels > 0: adaptive, at most L levels), the rest the defaults.
+  static PatchMeshJobOptions FromCommandLine(int degree, int cells, double cell, int continuity,
+                                             int levels, bool convex);
   MeshFitOptions fit;  // degree, cells or cell, continuity, convex, and the fitter's weights
   // MeshFitOptions::IsValid: false (with a reason naming the option) for a degree outside
   // 2..5, a continuity other than 0 or 1, convex without continuity 1, ...

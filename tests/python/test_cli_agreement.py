@@ -104,6 +104,25 @@ def test_patch_and_tree_fits(cli, tmp_path, noisy_cylinder, data_dir):
     assert_same_fit(expected, implicitfit.fit_tree(points, normals, implicitfit.Model.load(str(init))))
 
 
+def test_refined_patch_mesh_matches_the_command_line(cli, tmp_path):
+    # A box (sharp edges): C0 with one level of refinement at the creases, bit for bit as
+    # `fit --model patch-mesh --cells 5 --continuity 0 --levels 1`, with the same refinement report.
+    truth = write_model(tmp_path / "box.json", {"type": "box", "center": [0.1, 0, -0.1],
+                                                "axes": [[1, 0, 0], [0, 1, 0]],
+                                                "half_sizes": [0.6, 0.4, 0.3]})
+    cloud = tmp_path / "box.xyz"
+    code, _, err = run(cli, "sample", truth, "--count", "2000", "--noise", "0.001", "--seed", "4",
+                       "--out", cloud)
+    assert code == 0, err
+    expected = cli_fit(cli, tmp_path, cloud, "--model", "patch-mesh", "--cells", "5",
+                       "--continuity", "0", "--levels", "1")
+    points, normals = implicitfit.read_cloud(str(cloud))
+    result = implicitfit.fit_patch_mesh(points, normals, cells=5, continuity=0, levels=1)
+    assert_same_fit(expected, result)
+    assert result.report["refinement"]["levels"] == 1
+    assert len(result.inliers) == len(points)
+
+
 def test_sample_matches_the_command_line(cli, tmp_path):
     truth = write_model(tmp_path / "torus.json", {"type": "torus", "center": [0, 0, 1], "axis": [1, 0, 0],
                                                   "major_radius": 1.5, "minor_radius": 0.4})

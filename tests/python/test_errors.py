@@ -73,6 +73,15 @@ def test_invalid_options(cloud):
         implicitfit.fit(points, normals, kind="sphere", fix={"colour": 1})
     with pytest.raises(ValueError):
         implicitfit.fit_patch(points, normals, degree=7)
+    # The patch mesh's options, checked before any work as on the command line (exit 2 there).
+    with pytest.raises(ValueError, match="degree"):
+        implicitfit.fit_patch_mesh(points, normals, degree=7)
+    with pytest.raises(ValueError, match="continuity"):
+        implicitfit.fit_patch_mesh(points, normals, continuity=2)
+    with pytest.raises(ValueError, match="convex"):
+        implicitfit.fit_patch_mesh(points, normals, convex=True, levels=2)
+    with pytest.raises(ValueError, match="levels: must be >= 0"):
+        implicitfit.fit_patch_mesh(points, normals, continuity=0, levels=-1)
     with pytest.raises(ValueError, match="count"):
         implicitfit.sample(implicitfit.Model.from_json(SPHERE), 0)
     with pytest.raises(ValueError, match="outliers"):
