@@ -35,7 +35,7 @@ CommandAction AddMeshCommand(CLI::App& app) {
                   "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, enlarged)")
       ->delimiter(',')
       ->expected(6);
-  cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100)")
+  cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100; a patch mesh with creases: half its finest leaf)")
       ->check(CLI::PositiveNumber);
   auto clip = std::make_shared<bool>(false);
   cmd->add_flag("--clip-to-tetrahedron", *clip,

@@ -11,8 +11,9 @@
 // resident memory of the method
 // (each method runs in its own forked process: VmHWM of that process after the reconstruction, the
 // parent's few MB included). Patch-mesh rows use the fitter's defaults
-// (fit/bernstein/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with cell = longest box
-// side / 128; on the non-convex scans further rows fit at degrees 4 and 5 (--scan-degree), on
+// (fit/bernstein/bernstein_mesh_fitter.h) and mesh the zero set on the fit's grid box with the
+// mesher's default cell (datasets/meshing/default_mesh_cell.h, what `mesh` does; --mesh-cells n:
+// longest box side / n); on the non-convex scans further rows fit at degrees 4 and 5 (--scan-degree), on
 // convex inputs a second row fits with --convex and reports the certificate.
 //   build/bench/surface_comparison [--points 20000] [--seed 1] [--cells n] [--degree k]
 //                                [--scan-degree k2,k3,... (default 4,5; 0: no further scan row)]
@@ -21,7 +22,7 @@
 //                                [--far-field-relaxation r] [--far-field-floor f]
 //                                [--sign-guard-samples s] [--normal-weight w] (MeshFitOptions, step 2)
 //                                [--continuity 0|1] [--soft-c1 w (continuity 0)]
-//                                [--smoothing-weight w]
+//                                [--smoothing-weight w] [--mesh-cells n] [--mesh-feature-angle deg]
 //                                [--save-meshes DIR (every method's mesh as
 //                                DIR/<cloud>-<method>.ply)]
 #include <sys/resource.h>
@@ -251,7 +252,8 @@ struct Options {
   std::string save_dir;             // write the meshes here when given
   unsigned seed = 1;
   bool true_normals = false;  // generated CAD-like solids: the sampler's normals, not estimated
-  int mesh_cells = 128;       // mesher: box / mesh_cells
+  int mesh_cells = 0;         // mesher: box / mesh_cells; 0: the mesher's default cell
+  double mesh_feature_angle = 30.0;  // mesher: MeshOptions::feature_angle_deg
 };
 
 // --scan-degree's comma-separated list of degrees (0: none).
@@ -331,6 +333,8 @@ Options ParseOptions(int argc, char** argv) {
 
     else if (!std::strcmp(name, "--mesh-cells"))
       o.mesh_cells = std::atoi(value);
+    else if (!std::strcmp(name, "--mesh-feature-angle"))
+      o.mesh_feature_angle = std::atof(value);
   }
   return o;
 }
@@ -379,6 +383,8 @@ std::vector<Case> MakeCases(const Options& o) {
   for (const implicitfit::GeneratedSolid& s : implicitfit::AllGeneratedSolids())
     if (wanted(s.name))
       AddSolid(s.name, s.truth, s.box_min, s.box_max, o.points, o.seed, o.true_normals, &cases);
+  if (const implicitfit::CadSolid s = implicitfit::HeldOutPartSolid(); wanted(s.name))
+    AddSolid(s.name, s.truth, s.box_min, s.box_max, o.points, o.seed, o.true_normals, &cases);
   for (const char* part : {"test_PC21", "test_PC33", "test_PC34", "test_PC35", "train_PC124",
                            "train_PC131", "train_PC145", "train_PC155"})
     if (wanted(std::string("Fit4CAD ") + part)) AddFit4Cad(part, &cases);
@@ -429,7 +435,8 @@ TriangleMesh FitAndMesh(const Options& o, const Case& c, const PatchRow& row, Ou
   mo.has_box = true;
   mo.box_min = r.grid.BoxMin();
   mo.box_max = r.grid.BoxMax();
-  mo.cell = (mo.box_max - mo.box_min).maxCoeff() / o.mesh_cells;
+  if (o.mesh_cells > 0) mo.cell = (mo.box_max - mo.box_min).maxCoeff() / o.mesh_cells;
+  mo.feature_angle_deg = o.mesh_feature_angle;
   std::fprintf(stderr,
                "%s: noise %.3g spacing %.3g threshold %.3g rounds %d (%d rejected) levels %d "
                "leaves %lld unknowns %lld sharp faces %lld rms %.3g\n",

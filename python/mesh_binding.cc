@@ -59,7 +59,8 @@ void BindMesh(py::module_& m) {
         "A triangle mesh of the model's zero set, as `implicitfit mesh MODEL.json`: (V, F),\n"
         "V (n, 3) float64 vertices, F (m, 3) int64 indices into V, counter-clockwise seen from\n"
         "outside. model: a Model or the model file as a dict. cell: the grid spacing (None:\n"
-        "the longest side of the box / 100); the box is the model's proven bounds when its\n"
+        "the longest side of the box / 100, or half the finest leaf of a patch mesh with creases,\n"
+        "as `mesh`); the box is the model's proven bounds when its\n"
         "file states them (a verified solid), else the sampling box of `sample`.");
 }
 

@@ -41,6 +41,7 @@ struct FitArgs {
   double cell = 0.0;
   int continuity = 1;
   int levels = 0;
+  bool quiet = false;
   std::string grid, child = "plane";
   std::string view, ply;                 // --view PAGE.html, --ply RESIDUALS.ply
   std::optional<std::vector<int>> inliers;  // of a primitive fit, for the view and the PLY
@@ -63,6 +64,7 @@ CommandAction AddFitCommand(CLI::App& app) {
   model_opt->excludes(init_opt);
   cmd->add_option("--out", a->out, "Output model file (JSON)")->required();
   cmd->add_option("--report", a->report, "Write a JSON report of the fit");
+  cmd->add_flag("--quiet", a->quiet, "patch-mesh: no progress on stderr");
   cmd->add_option("--seed", a->seed, "Random seed (the fit is deterministic for a seed)");
   auto* threshold_opt =
       cmd->add_option("--threshold", a->threshold,
@@ -147,6 +149,7 @@ CommandAction AddFitCommand(CLI::App& app) {
     request.cell = a->cell;
     request.continuity = a->continuity;
     request.levels = a->levels;
+    request.quiet = a->quiet;
     request.grid = a->grid;
     request.child = a->child;
     if (a->kind != "partition" && a->kind != "bspline-surface" && !a->grid.empty())

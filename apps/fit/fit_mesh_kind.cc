@@ -1,12 +1,14 @@
 // fit CLOUD --model patch-mesh [--degree k] [--cells n | --cell h] [--continuity 0|1]
-//     [--levels L] [--convex] --out MODEL.json [--report R.json]: a Bernstein mesh
-//     (implicitfit/patch_mesh.h).
+//     [--levels L] [--convex] --out MODEL.json [--report R.json] [--quiet]: a Bernstein mesh
+//     (implicitfit/patch_mesh.h); progress on stderr (each fit's size and RMS, each refined
+//     try's fate) unless --quiet.
 // Exit 0 success; 1 the fit failed or (--convex) the certificate failed, no model written; 2
 // invalid usage or input.
 #include <cstdio>
 #include <iostream>
 
 #include "apps/fit/fit_model_kinds.h"
+#include "apps/progress_printer.h"
 #include "apps/report_header.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
@@ -17,14 +19,15 @@ namespace implicitfit {
 
 bool IsMeshKind(const std::string& kind) { return kind == "patch-mesh"; }
 
-ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
-  const PatchMeshJobOptions options = PatchMeshJobOptions::FromCommandLine(
+ModelKindFit FitMeshCloud(const ModelFitRequest& request, ProgressCallback progress) {
+  PatchMeshJobOptions options = PatchMeshJobOptions::FromCommandLine(
       request.degree > 0 ? request.degree : 3, request.cells, request.cell, request.continuity,
       request.levels, request.convex);
   if (!request.tetrahedron.empty())
     throw InputError("--tetrahedron applies to quadric-patch and cubic-patch");
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
+  options.fit.progress = std::move(progress);
   std::string normals;
   const PointCloud cloud = ReadOrientedCloud(request.cloud, &normals);
   const PatchMeshJobResult job = FitPatchMeshJob(cloud.points, cloud.normals, options, normals);
@@ -35,7 +38,7 @@ ModelKindFit FitMeshCloud(const ModelFitRequest& request) {
 }
 
 int RunMeshFit(const ModelFitRequest& request) {
-  const ModelKindFit fit = FitMeshCloud(request);
+  const ModelKindFit fit = FitMeshCloud(request, StderrProgress("fit", request.quiet));
   if (!request.report.empty()) WriteReportFile(request.report, fit.report);
   if (!fit.success) {
     std::cerr << "implicitfit fit: " << request.cloud << ": patch-mesh fit failed: " << fit.message

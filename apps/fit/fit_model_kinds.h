@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/common/progress.h"
 #include "fit/tree/tree_fitter.h"
 #include "model/model.h"
 
@@ -38,6 +39,7 @@ struct ModelFitRequest {
   double cell = 0.0;            // patch-mesh: --cell (0: from cells)
   int continuity = 1;           // patch-mesh: --continuity
   int levels = 0;               // patch-mesh: --levels (> 0: adaptive refinement)
+  bool quiet = false;           // patch-mesh: --quiet (no progress on stderr)
   std::string grid;             // partition: --grid AxBxC
   std::string child = "plane";  // partition: --child plane|quadric
 };
@@ -69,7 +71,7 @@ ModelKindFit MakeModelKindFit(const Result& r, nlohmann::json report, size_t poi
   return out;
 }
 ModelKindFit FitPatchCloud(const ModelFitRequest& request);
-ModelKindFit FitMeshCloud(const ModelFitRequest& request);
+ModelKindFit FitMeshCloud(const ModelFitRequest& request, ProgressCallback progress = {});
 
 bool IsPatchKind(const std::string& kind);
 

@@ -12,7 +12,8 @@ using Vec = Eigen::Vector3d;
 // Adds primitives in the solid's own frame, turned by CadSolidRotation() into the model's.
 class RotatedBuilder {
  public:
-  explicit RotatedBuilder(Model* m) : m_(m), r_(CadSolidRotation()) {}
+  explicit RotatedBuilder(Model* m, const Eigen::Matrix3d& r = CadSolidRotation())
+      : m_(m), r_(r) {}
   // The half-space n . x <= d (n unit, own frame).
   int Plane(const Vec& n, double d) {
     const Vec rn = r_ * n.normalized();
@@ -59,9 +60,9 @@ class RotatedBuilder {
   Eigen::Matrix3d r_;
 };
 
-// The box around the rotated own-frame box [lo, hi] (its 8 corners turned).
-void RotatedBox(const Vec& lo, const Vec& hi, CadSolid* s) {
-  const Eigen::Matrix3d r = CadSolidRotation();
+// The box around the own-frame box [lo, hi] turned by r (its 8 corners turned).
+void RotatedBox(const Vec& lo, const Vec& hi, CadSolid* s,
+                const Eigen::Matrix3d& r = CadSolidRotation()) {
   s->box_min = Vec::Constant(1e300);
   s->box_max = -s->box_min;
   for (int c = 0; c < 8; ++c) {
@@ -141,6 +142,31 @@ CadSolid SaddleBlockSolid() {
   faces.push_back(b.Quadric(Eigen::Vector3d(-0.125, 0.125, 0).asDiagonal(), Vec(0, 0, 0.5), -0.35));
   s.truth.SetRoot(b.Sharp(NodeType::kIntersection, faces));
   RotatedBox(Vec(-1, -0.7, -0.4), Vec(1, 0.7, 0.5), &s);
+  return s;
+}
+
+CadSolid HeldOutPartSolid() {
+  CadSolid s;
+  s.name = "held-out stepped part";
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Vec(2, -1, 1).normalized()).toRotationMatrix();
+  RotatedBuilder b(&s.truth, r);
+  const int lower =
+      b.Sharp(NodeType::kIntersection, b.BoxFaces(Vec(-1, -0.6, -0.4), Vec(1, 0.6, 0.0)));
+  std::vector<int> upper_faces = b.BoxFaces(Vec(-1, -0.6, -0.4), Vec(0.2, 0.6, 1), {5});
+  // z - 0.45 - 0.12 x y + 0.08 y^2 <= 0: A = [[0, -0.06, 0], [-0.06, 0.08, 0], [0, 0, 0]],
+  // 2 b = (0, 0, 1), c = -0.45.
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  a(0, 1) = a(1, 0) = -0.06;
+  a(1, 1) = 0.08;
+  upper_faces.push_back(b.Quadric(a, Vec(0, 0, 0.5), -0.45));
+  const int upper = b.Sharp(NodeType::kIntersection, upper_faces);
+  const int body = b.Sharp(NodeType::kUnion, {lower, upper});
+  // A sharp bevel across the lower step's far end: the plane through (0.8, 0, 0) whose normal
+  // leans 30 degrees up from +x (120 degrees to the top face, 150 to the end face).
+  const Vec bevel_normal(std::sqrt(3.0) / 2, 0, 0.5);
+  const int bevel = b.Plane(bevel_normal, bevel_normal.dot(Vec(0.8, 0, 0)));
+  s.truth.SetRoot(b.Sharp(NodeType::kIntersection, {body, bevel}));
+  RotatedBox(Vec(-1, -0.6, -0.4), Vec(1, 0.6, 0.6), &s, r);
   return s;
 }
 

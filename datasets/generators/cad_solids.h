@@ -13,6 +13,11 @@
 //                   135 degrees) and the other edges sharp
 //   saddle block    a block whose top is a saddle z = 0.35 + 0.25 (x^2 - y^2) / 2 (a freeform
 //                   face of both curvature signs, general quadric) meeting the sides sharply
+// and, held out (added after every setting of the patch-mesh fitter was chosen, and not part of
+// AllCadSolids; turned by its own rotation, axis (2, -1, 1), 0.7 rad):
+//   held-out stepped part  two sharp steps (a concave sharp crease between them), the upper
+//                   step's top a freeform quadric z = 0.45 + 0.12 x y - 0.08 y^2, and a sharp
+//                   bevel across the lower step's far end (normal 30 degrees up from +x)
 #pragma once
 
 #include <Eigen/Core>
@@ -35,6 +40,7 @@ CadSolid FlangeSolid();
 CadSolid ChamferedBlockSolid();
 CadSolid SaddleBlockSolid();
 std::vector<CadSolid> AllCadSolids();
+CadSolid HeldOutPartSolid();
 
 // The rotation every solid is turned by.
 Eigen::Matrix3d CadSolidRotation();

@@ -21,6 +21,7 @@
 
 #include "datasets/io/atomic_file.h"
 #include "datasets/generators/model_sampler.h"
+#include "datasets/meshing/default_mesh_cell.h"
 #include "datasets/meshing/sharp_features.h"
 #include "model/worker_threads.h"
 
@@ -89,9 +90,25 @@ Vec RootOnEdge(const Model& model, const Vec& a, const Vec& b, double fa, double
   return a + s * (b - a);
 }
 
+// A model whose root is a Bernstein mesh (a patch-mesh fit) without stated bounds: f is fitted
+// on the grid box only; outside it the boundary tetrahedra's polynomials are extrapolated
+// (docs/patch-mesh.md) and can change sign, sheets that are no surface of the fit (measured on a
+// box fitted at one level: 1.5-10% of the mesh's area half a box away, growing with the cell).
+// Its default mesh box is therefore the grid box itself, not enlarged.
+bool DefinedOnItsGridBoxOnly(const Model& model) {
+  return !model.claims().has_bounds && model.root() >= 0 &&
+         model.nodes()[model.root()].type == NodeType::kBernsteinMesh;
+}
+
 }  // namespace
 
 void DefaultMeshBox(const Model& model, Vec* box_min, Vec* box_max) {
+  if (DefinedOnItsGridBoxOnly(model)) {
+    const BernsteinGrid& grid = model.nodes()[model.root()].grid;
+    *box_min = grid.BoxMin();
+    *box_max = grid.BoxMax();
+    return;
+  }
   if (model.claims().has_bounds) {  // the writer's box of {f <= 0} (a verified solid's)
     *box_min = model.claims().bounds_min;
     *box_max = model.claims().bounds_max;
@@ -106,7 +123,7 @@ void DefaultMeshBox(const Model& model, Vec* box_min, Vec* box_max) {
 namespace {
 
 // 1. The box (given, or the model's own plus two cells on every side, so that a closed surface
-// stays off the faces), the cell (given, or 1/100 of the longest side), f at every grid node.
+// stays off the faces), the cell (given, or DefaultMeshCell), f at every grid node.
 Grid SampleGrid(const Model& model, const MeshOptions& options, MeshResult* result) {
   Vec lo, hi;
   if (options.has_box) {
@@ -118,9 +135,9 @@ Grid SampleGrid(const Model& model, const MeshOptions& options, MeshResult* resu
   if (!lo.allFinite() || !hi.allFinite() || !((hi - lo).array() > 0).all())
     throw std::invalid_argument("mesh box must have min < max on every axis");
   const double longest = (hi - lo).maxCoeff();
-  const double h = options.cell > 0 ? options.cell : longest / 100.0;
+  const double h = options.cell > 0 ? options.cell : DefaultMeshCell(model, longest);
   if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("mesh cell must be > 0");
-  if (!options.has_box) {
+  if (!options.has_box && !DefinedOnItsGridBoxOnly(model)) {
     lo -= Vec::Constant(2 * h);
     hi += Vec::Constant(2 * h);
   }

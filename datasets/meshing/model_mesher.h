@@ -3,7 +3,7 @@
 //   1. f is sampled on a regular grid of cell h over a box (default: the model's bounds when its
 //      file states them (a verified solid, model/model.h ModelClaims), else SamplingBox of
 //      datasets/generators/model_sampler.h; enlarged by 10% of its size and two cells on every
-//      side);
+//      side; a Bernstein mesh root: its grid box, DefaultMeshBox);
 //   2. VTK's vtkFlyingEdges3D contours the grid at 0: one vertex per grid edge whose ends
 //      differ in sign, triangles from the marching-cubes case table (shared vertices, so a
 //      surface that closes inside the box gives a closed, edge-manifold mesh);
@@ -51,7 +51,7 @@ constexpr double kJumpFraction = 0.25;
 struct MeshOptions {
   bool has_box = false;  // use box_min/box_max instead of the default box
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
-  double cell = 0.0;                 // grid spacing; 0: longest box side / 100
+  double cell = 0.0;                 // grid spacing; 0: DefaultMeshCell (default_mesh_cell.h)
   int num_threads = 0;               // for the grid values; 0 = hardware concurrency
   long max_grid_points = 64L << 20;  // refuse finer grids (memory: 8 bytes a point)
   bool sharp_features = true;        // step 5
@@ -74,7 +74,8 @@ struct MeshResult {
 MeshResult MeshModel(const Model& model, const MeshOptions& options = {});
 
 // The default box of `mesh`: the model's bounds (ModelClaims) or else SamplingBox, enlarged by
-// 10% of its size on every side.
+// 10% of its size on every side; a model whose root is a Bernstein mesh (without bounds): its
+// grid box, not enlarged (outside it f is an extrapolation).
 void DefaultMeshBox(const Model& model, Eigen::Vector3d* box_min, Eigen::Vector3d* box_max);
 
 // Writes the mesh as binary little-endian PLY: vertex x y z nx ny nz (double), face

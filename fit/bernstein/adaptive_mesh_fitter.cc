@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <optional>
 
@@ -103,6 +104,10 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
   BernsteinGrid grid = base;
   grid.refinement = UniformRefinement(grid.cells);
   grid.sharp.clear();
+  char text[160];
+  std::snprintf(text, sizeof text, "at most %d level%s, leaves whose residual exceeds %.3g",
+                options.max_levels, options.max_levels == 1 ? "" : "s", threshold);
+  ProgressStage progress(options.progress, "refinement", text);
   MeshFitResult fit = FitBernsteinMeshOnGrid(points, normals, options, grid, nullptr);
   int rounds = 1, kept_rounds = 0;
   for (int level = 1; level <= options.max_levels && fit.success; ++level) {
@@ -131,7 +136,7 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
     std::vector<bool> frozen(wanted.size(), false);
     MeshFitResult next;
     std::optional<MeshFitResult> flip_free;  // the first try that changed no sign
-    bool kept = false;
+    bool kept = false, no_gain = false;
     for (int attempt = 0; attempt <= options.round_retries && !kept; ++attempt) {
       std::vector<bool> split(wanted.size(), false);
       bool any = false;
@@ -181,7 +186,13 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
       // rule before) kept no level on the saddle, domed block or flange; keeping the tries
       // whose signs hold but the zero set came nearer let a blob of 0.2 through on the
       // chamfered block (0.00204), which the retry removes (0.00145).
-      if (!next.success || !(next.rms < fit.rms)) break;
+      if (!next.success || !(next.rms < fit.rms)) {
+        std::snprintf(text, sizeof text, "level %d: no lower rms (%.3g against %.3g), stopped",
+                      level, next.rms, fit.rms);
+        progress.Update(text);
+        no_gain = true;
+        break;
+      }
       const double band = 0.02 * (finer.BoxMax() - finer.BoxMin()).norm();
       EmptySpaceSignGuard guard(finer, points, band, options.sign_guard_samples);
       guard.Record(k, start.control_points);
@@ -194,6 +205,16 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
         kept = true;
         break;
       }
+      const long long flipped = std::count_if(grew.begin(), grew.end(),
+                                              [](const auto& g) { return g.sign_changed; });
+      std::snprintf(text, sizeof text,
+                    "level %d, try %d: surface grew off the data at %zu samples (%lld changed "
+                    "sign)%s",
+                    level, attempt + 1, grew.size(), flipped,
+                    attempt < options.round_retries ? "; fitting again with the leaves near "
+                                                      "them left whole"
+                                                    : "");
+      progress.Update(text);
       for (long long q = 0; q < fit.grid.NumLeaves(); ++q) {
         const Tetrahedron first = fit.grid.TetrahedronOf(6 * q);
         const Vec lo = first.vertex(0), hi = first.vertex(3);
@@ -209,6 +230,11 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
       next = std::move(*flip_free);
       kept = true;
     }
+    if (kept || !no_gain) {
+      std::snprintf(text, sizeof text, "level %d %s", level,
+                    kept ? "kept" : "dropped (every try changed signs off the data)");
+      progress.Update(text);
+    }
     if (!kept) break;
     next.iterations += fit.iterations;
     ++kept_rounds;
@@ -223,6 +249,9 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
   fit.levels = fit.grid.MaxLevel();
   fit.leaves = fit.grid.NumLeaves();
   for (unsigned char s : fit.grid.sharp) fit.sharp_faces += __builtin_popcount(s);
+  std::snprintf(text, sizeof text, "%d level%s, %lld leaves, %d fits (%d not kept)", fit.levels,
+                fit.levels == 1 ? "" : "s", fit.leaves, fit.rounds, fit.rejected_rounds);
+  progress.End(text);
   if (fit.grid.MaxLevel() == 0) fit.grid.refinement = GridRefinement();  // plain uniform file
   return fit;
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <memory>
@@ -566,6 +567,13 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
     return result;
   }
   result.tetrahedra = grid.NumTetrahedra();
+  ProgressStage stage(options.progress, "patch-mesh fit",
+                      std::to_string(grid.NumTetrahedra()) + " patches" +
+                          (grid.MaxLevel() > 0 ? ", " + std::to_string(grid.NumLeaves()) +
+                                                     " leaves over " +
+                                                     std::to_string(grid.MaxLevel()) +
+                                                     (grid.MaxLevel() == 1 ? " level" : " levels")
+                                               : ""));
   const double diagonal = (grid.BoxMax() - grid.BoxMin()).norm();
   const double d = 0.01 * diagonal;
 
@@ -654,6 +662,11 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
   result.unknowns = solver.unknowns();
   result.box_sign_errors = far.empty() ? -1 : FarFieldSignErrors(grid, k, b, far, true);
   result.rms = MeshRms(grid, k, b, points, normals, &result.mean_normal_angle_deg);
+  {
+    char rms[48];
+    std::snprintf(rms, sizeof rms, "rms %.3g", result.rms);
+    stage.End(rms);
+  }
   result.min_eigenvalue = std::numeric_limits<double>::infinity();
   for (long long t = 0; t < grid.NumTetrahedra(); ++t) {
     const ConvexityCertificate c = CertifyConvexity(k, b.data() + t * n);

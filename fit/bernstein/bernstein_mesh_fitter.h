@@ -99,6 +99,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/common/progress.h"
 #include "model/bernstein/bernstein_mesh.h"
 #include "model/model.h"
 
@@ -162,6 +163,10 @@ struct MeshFitOptions {
   // is fitted again with the leaves near the growth left whole, up to this many times (a
   // second retry changed none of the 8 CAD-like benchmark clouds' results).
   int round_retries = 1;
+  // Progress (fit/common/progress.h): stage "patch-mesh fit" per fit (its size at the start, the
+  // RMS at the end); an adaptive fit also reports each refined try's fate as a "refinement"
+  // update. Empty: nothing reported.
+  ProgressCallback progress;
   bool IsValid(std::string* error) const;
 };
 
