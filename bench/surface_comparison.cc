@@ -24,7 +24,9 @@
 //                                [--continuity 0|1] [--soft-c1 w (continuity 0)]
 //                                [--smoothing-weight w] [--mesh-cells n] [--mesh-feature-angle deg]
 //                                [--save-meshes DIR (every method's mesh as
-//                                DIR/<cloud>-<method>.ply)]
+//                                DIR/<cloud>-<method>.ply with each vertex's distance to the
+//                                truth in .ply.dist, the cloud and the truth's points as
+//                                DIR/<cloud>-cloud.xyz and -truth.xyz)]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -109,8 +111,15 @@ Outcome RunIsolated(const Case& c, unsigned seed,
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.peak_rss_mb = PeakRssMb();
-    if (!save_path.empty() && !mesh.triangles.empty())
+    if (!save_path.empty() && !mesh.triangles.empty()) {
       implicitfit::WriteMeshPlyFile(mesh, save_path);
+      // Each vertex's distance to the truth, one a line (where is the mesh off?).
+      if (FILE* f = std::fopen((save_path + ".dist").c_str(), "w")) {
+        Vec unused;
+        for (const Vec& v : mesh.vertices) std::fprintf(f, "%.6g\n", c.truth.distance(v, &unused));
+        std::fclose(f);
+      }
+    }
     o.figures = bench::JudgeMesh(mesh, c.truth, seed);
     o.figures.seconds = seconds;
     o.ok = true;
@@ -346,6 +355,23 @@ std::string SavePath(const Options& o, const Case& c, const std::string& tag) {
              : o.save_dir + "/" + c.name.substr(0, c.name.find(' ')) + "-" + tag + ".ply";
 }
 
+// With --save-meshes: the input cloud (x y z nx ny nz) and the truth's points (x y z) beside the
+// meshes, DIR/<first word>-cloud.xyz and -truth.xyz, for looking at where a mesh is off.
+void SaveInputs(const Options& o, const Case& c) {
+  if (o.save_dir.empty()) return;
+  const std::string stem = o.save_dir + "/" + c.name.substr(0, c.name.find(' '));
+  if (FILE* f = std::fopen((stem + "-cloud.xyz").c_str(), "w")) {
+    for (size_t i = 0; i < c.points.size(); ++i)
+      std::fprintf(f, "%.9g %.9g %.9g %.9g %.9g %.9g\n", c.points[i].x(), c.points[i].y(),
+                   c.points[i].z(), c.normals[i].x(), c.normals[i].y(), c.normals[i].z());
+    std::fclose(f);
+  }
+  if (FILE* f = std::fopen((stem + "-truth.xyz").c_str(), "w")) {
+    for (const Vec& p : c.truth.points) std::fprintf(f, "%.9g %.9g %.9g\n", p.x(), p.y(), p.z());
+    std::fclose(f);
+  }
+}
+
 // The clouds whose name contains --only (the others are not even made: sampling, normals).
 std::vector<Case> MakeCases(const Options& o) {
   std::vector<Case> cases;
@@ -503,6 +529,7 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     if (c.name.find(options.only) == std::string::npos) continue;
+    SaveInputs(options, c);
     RunPatchMeshRows(options, c);
     RunPeerRows(options, c);
   }
