@@ -32,10 +32,13 @@ CommandAction AddMeshCommand(CLI::App& app) {
   cmd->add_option("MODEL", *model_path, "Model file (JSON)")->required();
   cmd->add_option("--out", *out, "Output mesh (.ply; - for stdout)")->required();
   cmd->add_option("--box", *box,
-                  "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, enlarged)")
+                  "Box to mesh: xmin,ymin,zmin,xmax,ymax,zmax (default: the model's box, "
+                  "enlarged; a patch mesh: its grid box)")
       ->delimiter(',')
       ->expected(6);
-  cmd->add_option("--cell", *cell, "Grid spacing (default: longest box side / 100; a patch mesh with creases: half its finest leaf)")
+  cmd->add_option("--cell", *cell,
+                  "Grid spacing (default: longest box side / 100; a patch mesh with creases: "
+                  "half its finest leaf)")
       ->check(CLI::PositiveNumber);
   auto clip = std::make_shared<bool>(false);
   cmd->add_flag("--clip-to-tetrahedron", *clip,

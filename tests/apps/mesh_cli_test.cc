@@ -215,7 +215,8 @@ TEST(MeshCli, LevelsRefineAtTheEdgesOfABox) {
   // box's exact distance, from `eval` of the truth at every vertex). Before the default box was
   // the grid box, the mesher also contoured the extrapolation beyond the grid: vertices up to
   // 0.53 off the box, mean 0.026 (measured; 0.00086 within the grid box).
-  const auto meshed = RunCommand(kCli + " mesh " + dir + "/refined.json --out " + dir + "/refined.ply");
+  const auto meshed =
+      RunCommand(kCli + " mesh " + dir + "/refined.json --out " + dir + "/refined.ply");
   ASSERT_EQ(meshed.exit_code, 0) << meshed.err;
   const auto on_box = RunCommand(kCli + " eval " + truth + " " + dir + "/refined.ply");
   ASSERT_EQ(on_box.exit_code, 0) << on_box.err;
