@@ -6,8 +6,8 @@
 //     where one grid cell spans the rounding (the grad f normals of the cell's patch spread by
 //     more than the feature angle). The cell is u / 2, no coarser than longest / 64 (the chord
 //     error of the smooth faces). Measured on the CAD-like solids of bench/surface_comparison at
-//     two levels (u / 4 before): Chamfer 4-9% lower (bench/RESULTS.md, "Mesh cell from the
-//     leaves").
+//     two levels, against u / 4 (the benchmark's cell before): Chamfer 4-9% lower, the Fit4CAD
+//     parts 0.1-1.2% higher (bench/RESULTS.md, "Mesh cell from the leaves").
 // With several Bernstein meshes with creases, the finest of them sets the cell.
 #pragma once
 
