@@ -9,6 +9,7 @@ packages=(cmake g++ make libceres-dev libeigen3-dev libpcl-dev libflann-dev libo
           python3-venv python3-pip python3-setuptools python3-wheel  # pip install . (pyproject.toml)
           libcgal-dev  # CGAL: bench/detect_comparison only
           libsuitesparse-dev  # SuiteSparseQR: continuity projection of patch meshes
+          libopenblas-serial-dev  # BLAS for CHOLMOD, ahead of Ceres' ATLAS (fit/CMakeLists.txt)
           libglpk-dev  # GLPK: exact LPs of the minimum-zone fits
           libjs-three  # three.js, inlined into the pages of `implicitfit view` (view/)
           chromium  # headless Chromium: `view --png` and the browser tests (tests/view/)

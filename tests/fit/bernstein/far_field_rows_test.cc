@@ -70,7 +70,9 @@ TEST(FarFieldRows, RefinedLeavesGetRowsAtTheirOwnSpacing) {
   EXPECT_EQ(rows.size(), 125u + 125u - 27u);
   for (const auto& [i, j, l] : lattice) {
     const bool in_split_cube = i >= 4 && j >= 4 && l >= 4;
-    if (!in_split_cube) EXPECT_TRUE(i % 2 == 0 && j % 2 == 0 && l % 2 == 0) << i << j << l;
+    if (!in_split_cube) {
+      EXPECT_TRUE(i % 2 == 0 && j % 2 == 0 && l % 2 == 0) << i << j << l;
+    }
   }
   // Every quarter-lattice point of the split cube is there.
   for (int i = 4; i <= 8; ++i)
