@@ -153,9 +153,10 @@ struct MeshFitOptions {
   double refine_spacing_floor = 0.05;
   double min_leaf_spacings = 2.0;
   int max_levels = 3;
-  // The budget: about 1 CPU second per 1 000 unknowns (bunny 74 359: 87 s; kitten 37 813: 44 s),
-  // so a 20 000-point part stays near a minute (Fit4CAD PC35, noise-free, split nearly every
-  // leaf: one level 35 158 unknowns in 63 s, two levels ran over 30 minutes at 400 000).
+  // The budget, set when 1 000 unknowns cost about 1 CPU second with ATLAS (bunny 74 359: 87 s;
+  // kitten 37 813: 44 s; OpenBLAS takes 0.5-0.8x that), so a 20 000-point part stays near a
+  // minute (Fit4CAD PC35, noise-free, split nearly every leaf: one level 35 158 unknowns in 63 s,
+  // two levels ran over 30 minutes at 400 000).
   long long max_unknowns = 60000;
   bool sharp_features = true;
   double feature_angle_deg = 40.0;

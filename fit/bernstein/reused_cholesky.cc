@@ -22,7 +22,9 @@ bool ReusedCholeskySolver::SamePattern(const SparseMatrix& H) const {
 
 // Preconditioned conjugate gradients with the stored factor as M (header).
 bool ReusedCholeskySolver::Iterate(const SparseMatrix& H, const Eigen::VectorXd& g,
-                                   const Eigen::VectorXd& guess, Eigen::VectorXd* w) const {
+                                   const Eigen::VectorXd& guess, Eigen::VectorXd* w,
+                                   int* iterations) const {
+  *iterations = 0;
   const Eigen::VectorXd mg = cholmod_->solve(g);
   const double reference = g.dot(mg);
   if (!(reference > 0) || !std::isfinite(reference)) return false;
@@ -32,8 +34,10 @@ bool ReusedCholeskySolver::Iterate(const SparseMatrix& H, const Eigen::VectorXd&
   double rz = r.dot(z);
   const double target = tolerance_ * tolerance_ * reference;
   Eigen::VectorXd p = z;
-  int it = 0;
-  for (; it < max_iterations_ && rz > target; ++it) {
+  // Early abandonment (header): the reduction of r^T M^-1 r still needed, in orders of e.
+  const double rz_start = rz, needed = std::log(rz_start / target);
+  int& it = *iterations;
+  for (it = 0; it < max_iterations_ && rz > target;) {
     const Eigen::VectorXd hp = H * p;
     const double php = p.dot(hp);
     if (!(php > 0)) return false;
@@ -44,6 +48,11 @@ bool ReusedCholeskySolver::Iterate(const SparseMatrix& H, const Eigen::VectorXd&
     const double rz_next = r.dot(z);
     p = z + (rz_next / rz) * p;
     rz = rz_next;
+    ++it;
+    if (it >= kRateIterations && rz > target) {
+      const double rate = std::log(rz_start / rz) / it;  // mean reduction per iteration so far
+      if (!(rate > 0) || needed / rate > max_iterations_) return false;
+    }
   }
   if (!(rz <= target) || !x.allFinite()) return false;
   *w = std::move(x);
@@ -54,9 +63,14 @@ Eigen::VectorXd ReusedCholeskySolver::Solve(const SparseMatrix& H, const Eigen::
                                             const Eigen::VectorXd& guess) {
   Eigen::VectorXd w;
   const bool same_pattern = SamePattern(H);
-  if (same_pattern && factor_valid_ && max_iterations_ > 0 && Iterate(H, g, guess, &w)) {
-    ++iterative_solves_;
-    return w;
+  if (same_pattern && factor_valid_ && max_iterations_ > 0) {
+    int iterations = 0;
+    const bool converged = Iterate(H, g, guess, &w, &iterations);
+    cg_iterations_ += iterations;
+    if (converged) {
+      ++iterative_solves_;
+      return w;
+    }
   }
   if (!same_pattern) {
     cholmod_ = std::make_unique<Factor>();

@@ -13,6 +13,13 @@
 // metric of M), else after max_iterations the matrix is factorised afresh and solved directly.
 // The default tolerance 1e-5 suits the refinement's steps, which are followed by a line search
 // (kitten, degree 4: the same RMS to 6 digits as with 1e-8, 8-14 iterations instead of 14-30).
+// Early abandonment: from the kRateIterations-th iteration on, the mean reduction of r^T M^-1 r
+// per iteration so far predicts the iterations the target needs; when that exceeds
+// max_iterations the iteration stops and the matrix is factorised at once. A failed iteration
+// costs nearly a factorisation (Fit4CAD PC155, two levels, 49 090 unknowns: 30 iterations took
+// 0.7-1.1x a factorisation's time) and failures come in runs (the relaxed stages reweight the
+// far-field rows by 0.3 at a time): 39 of that fit's 65 iterative tries failed, 42% of its
+// solver time, where a converging iteration reduces the residual steadily from the start.
 // The symbolic analysis (ordering, supernodes) is kept while the pattern is unchanged.
 #pragma once
 
@@ -37,11 +44,14 @@ class ReusedCholeskySolver {
 
   int factorisations() const { return factorisations_; }
   int iterative_solves() const { return iterative_solves_; }
+  long long cg_iterations() const { return cg_iterations_; }  // all, converged or not
+
+  static constexpr int kRateIterations = 5;  // iterations before the rate is trusted
 
  private:
   bool SamePattern(const SparseMatrix& H) const;
   bool Iterate(const SparseMatrix& H, const Eigen::VectorXd& g, const Eigen::VectorXd& guess,
-               Eigen::VectorXd* w) const;
+               Eigen::VectorXd* w, int* iterations) const;
 
   int max_iterations_;
   double tolerance_;
@@ -50,6 +60,7 @@ class ReusedCholeskySolver {
   std::vector<SparseMatrix::StorageIndex> inner_, outer_;  // of that pattern
   bool factor_valid_ = false;  // cholmod_ holds a successful numeric factor
   int factorisations_ = 0, iterative_solves_ = 0;
+  long long cg_iterations_ = 0;
 };
 
 }  // namespace implicitfit
