@@ -2,14 +2,13 @@
 // build (41% of a bracket's patch-mesh run in its kernels; bench/RESULTS.md, "OpenBLAS instead of
 // ATLAS"). Which library serves a BLAS or LAPACK call is decided by the dynamic linker: the first
 // definition in the process's global scope, the one dlsym(RTLD_DEFAULT) returns, is the one
-// CHOLMOD's supernodal factorisations call. A link order that put ATLAS's libf77blas first again
+// CHOLMOD's supernodal factorisations call (this binary links implicitfit::fit, as every
+// program that fits does). A link order that put ATLAS's libf77blas first again
 // would keep every result and silently slow every fit; this test sees it.
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <string>
-
-#include "fit/bernstein/reused_cholesky.h"  // a program that solves with CHOLMOD
 
 namespace implicitfit {
 namespace {
