@@ -21,6 +21,7 @@
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
 //                                [--far-field-relaxation r] [--far-field-floor f]
 //                                [--sign-guard-samples s] [--normal-weight w] (MeshFitOptions, step 2)
+//                                [--progress 1 (the fit's stages and rounds on stderr)]
 //                                [--continuity 0|1] [--soft-c1 w (continuity 0)]
 //                                [--smoothing-weight w] [--mesh-cells n] [--mesh-feature-angle deg]
 //                                [--save-meshes DIR (every method's mesh as
@@ -263,6 +264,7 @@ struct Options {
   bool true_normals = false;  // generated CAD-like solids: the sampler's normals, not estimated
   int mesh_cells = 0;         // mesher: box / mesh_cells; 0: the mesher's default cell
   double mesh_feature_angle = 30.0;  // mesher: MeshOptions::feature_angle_deg
+  bool progress = false;             // the fit's stages and rounds on stderr, with seconds
 };
 
 // --scan-degree's comma-separated list of degrees (0: none).
@@ -309,6 +311,8 @@ Options ParseOptions(int argc, char** argv) {
       f.sign_guard_samples = std::atoi(value);
     else if (!std::strcmp(name, "--only"))
       o.only = value;
+    else if (!std::strcmp(name, "--progress"))
+      o.progress = std::atoi(value) != 0;
     else if (!std::strcmp(name, "--save-meshes"))
       o.save_dir = value;
     else if (!std::strcmp(name, "--tangent-plane-signs"))
@@ -442,6 +446,14 @@ TriangleMesh FitAndMesh(const Options& o, const Case& c, const PatchRow& row, Ou
   fo.degree = row.degree;
   fo.cells = row.cells;
   fo.convex = row.convex;
+  if (o.progress)
+    fo.progress = [name = c.name](const implicitfit::ProgressEvent& e) {
+      std::fprintf(stderr, "%s: %s %s %s (%.2f s)\n", name.c_str(), e.stage.c_str(),
+                   e.kind == implicitfit::ProgressEvent::Kind::kBegin  ? "begins:"
+                   : e.kind == implicitfit::ProgressEvent::Kind::kEnd ? "ends:"
+                                                                       : "-",
+                   e.detail.c_str(), e.seconds);
+    };
   if (row.convex) {  // certified fits are C1 on a uniform grid
     fo.adaptive = false;
     fo.continuity = 1;
