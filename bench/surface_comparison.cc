@@ -65,6 +65,7 @@ struct Case {
   double size = 1;
   bool convex = false;
   bool scan = false;
+  bool estimated_normals = false;  // PCA normals (datasets/normals), not the file's or model's
 };
 
 // What a method's child process sends back.
@@ -167,8 +168,10 @@ bool AddScan(const std::string& path, const std::string& name, bool convex,
     return false;
   }
   implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(path);
-  if (!cloud.has_normals()) implicitfit::EnsureOrientedNormals(&cloud);  // the user's path
+  const bool estimate = !cloud.has_normals();
+  if (estimate) implicitfit::EnsureOrientedNormals(&cloud);  // the user's path
   Case c;
+  c.estimated_normals = estimate;
   c.name = name;
   c.points = cloud.points;
   c.normals = cloud.normals;
@@ -225,6 +228,7 @@ void AddSolid(const std::string& name, const implicitfit::Model& truth, const Ve
     implicitfit::EnsureOrientedNormals(&cloud);
   }
   Case c;
+  c.estimated_normals = !true_normals;
   c.name = name + (true_normals ? " (true normals)" : "");
   c.points = cloud.points;
   c.normals = cloud.normals;
@@ -245,6 +249,7 @@ void AddFit4Cad(const std::string& part, std::vector<Case>* cases) {
   implicitfit::PointCloud cloud = implicitfit::ReadCloudFile(path);
   implicitfit::EnsureOrientedNormals(&cloud);
   Case c;
+  c.estimated_normals = true;
   c.name = "Fit4CAD " + part;
   c.points = cloud.points;
   c.normals = cloud.normals;
@@ -341,6 +346,8 @@ Options ParseOptions(int argc, char** argv) {
       f.smoothing_weight = std::atof(value);
     else if (!std::strcmp(name, "--soft-c1"))
       f.soft_c1_weight = std::atof(value);
+    else if (!std::strcmp(name, "--sharp-normal"))
+      f.sharp_normal_factor = std::atof(value);
     else if (!std::strcmp(name, "--soft-c1-sharp"))
       f.soft_c1_sharp_factor = std::atof(value);
 
@@ -446,6 +453,7 @@ TriangleMesh FitAndMesh(const Options& o, const Case& c, const PatchRow& row, Ou
   fo.degree = row.degree;
   fo.cells = row.cells;
   fo.convex = row.convex;
+  fo.normals_estimated = c.estimated_normals;
   if (o.progress)
     fo.progress = [name = c.name](const implicitfit::ProgressEvent& e) {
       std::fprintf(stderr, "%s: %s %s %s (%.2f s)\n", name.c_str(), e.stage.c_str(),

@@ -97,7 +97,11 @@ PatchMeshJobResult FitPatchMeshJob(const std::vector<Eigen::Vector3d>& points,
   out.options = options;
   out.normals = normals_action;
   out.points = points.size();
-  out.result = FitBernsteinMesh(points, normals, options.fit);
+  // Normals the reader estimated (datasets/normals/normal_estimation.cc: "estimated, ...") are
+  // blends at the creases: their rows are lighter there (MeshFitOptions::normals_estimated).
+  MeshFitOptions fit = options.fit;
+  fit.normals_estimated = normals_action.rfind("estimated", 0) == 0;
+  out.result = FitBernsteinMesh(points, normals, fit);
   out.success = out.result.success;
   out.message = out.result.message;
   out.termination = out.success ? FitTermination::kConverged : FitTermination::kFailure;

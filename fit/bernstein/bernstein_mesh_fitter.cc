@@ -207,6 +207,13 @@ double MeshRms(const BernsteinGrid& grid, int k, const std::vector<double>& b,
   return std::sqrt(ss / std::max<size_t>(1, points.size()));
 }
 
+// The factor of the normal rows of a point in tetrahedron t: sharp_normal_factor in a crease
+// tetrahedron when the normals were estimated (MeshFitOptions::normals_estimated), else 1.
+double NormalRowFactor(const BernsteinGrid& grid, long long t, const MeshFitOptions& options) {
+  const bool crease = !grid.sharp.empty() && grid.sharp[static_cast<size_t>(t)] != 0;
+  return options.normals_estimated && crease ? options.sharp_normal_factor : 1.0;
+}
+
 // Step 2 (unconstrained): Gauss-Newton on the geometric residual f/|grad f| with the gradient
 // norm g_i frozen at the current iterate (a linear problem: iteratively reweighted least
 // squares, each iteration one DomainLeastSquares solve). Rows per point: c_i f(p_i)/g_i (c_i the
@@ -252,6 +259,7 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
       Vec g;
       const double f = BernsteinPatch::Derivatives(k, grid.TetrahedronOf(t), b.data() + t * n,
                                                    points[i].data(), &g);
+      const double wn = normal_weight * NormalRowFactor(grid, t, options);
       const double gn = std::max(g.norm(), 1e-12);
       const double r = f / gn;
       const double c = s > 0 ? 1.0 / std::sqrt(1.0 + (r / s) * (r / s)) : 1.0;
@@ -266,13 +274,12 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
         const Eigen::Matrix3d projector = (Eigen::Matrix3d::Identity() - u * u.transpose()) / gn;
         const double sign = g.dot(normals[i]) < 0 ? -1.0 : 1.0;
         for (int a = 0; a < 3; ++a)
-          rows[1 + a] = {normal_weight * c, 0.0, projector.row(a).transpose(),
+          rows[1 + a] = {wn * c, 0.0, projector.row(a).transpose(),
                          sign * normals[i][a] - u[a]};
-        solver->AddPointRows(points[i], rows, normal_weight > 0 ? 4 : 1);
+        solver->AddPointRows(points[i], rows, wn > 0 ? 4 : 1);
       } else {
         solver->AddValueRow(points[i], c / gn, 0.0);
-        if (normal_weight > 0)
-          solver->AddGradientRows(points[i], normal_weight * c / gn, gn * normals[i]);
+        if (wn > 0) solver->AddGradientRows(points[i], wn * c / gn, gn * normals[i]);
       }
       solver->AddValueRow(points[i] + d * normals[i], scale_weight, d);
       solver->AddValueRow(points[i] - d * normals[i], scale_weight, -d);
@@ -363,8 +370,9 @@ int Refine(const BernsteinGrid& grid, int k, int continuity, const std::vector<V
   for (long long t = 0; t < grid.NumTetrahedra(); ++t) problem.AddParameterBlock(base + t * n, n);
   for (size_t i = 0; i < points.size(); ++i) {
     const long long t = data.tet[i];
-    problem.AddResidualBlock(AnyPointCost(k, tets[t], points[i], normals[i], options.normal_weight),
-                             loss.get(), base + t * n);
+    const double wn = options.normal_weight * NormalRowFactor(grid, t, options);
+    problem.AddResidualBlock(AnyPointCost(k, tets[t], points[i], normals[i], wn), loss.get(),
+                             base + t * n);
   }
   // Scale-fixing offset rows (LinearRowCost), weight kScaleWeight.
   constexpr double kScaleWeight = 0.1;
@@ -468,6 +476,8 @@ bool MeshFitOptions::IsValid(std::string* error) const {
     return fail("soft_c1_weight must be >= 0");
   if (!(soft_c1_sharp_factor >= 0.0 && std::isfinite(soft_c1_sharp_factor)))
     return fail("soft_c1_sharp_factor must be >= 0");
+  if (!(sharp_normal_factor >= 0.0 && std::isfinite(sharp_normal_factor)))
+    return fail("sharp_normal_factor must be >= 0");
   return true;
 }
 
