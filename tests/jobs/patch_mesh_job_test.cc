@@ -13,14 +13,19 @@
 namespace implicitfit {
 namespace {
 
+// 1500 points sampled on `model` (its own normals).
+SampleJobResult Sample1500(const Model& model, unsigned seed) {
+  SampleJobOptions sample;
+  sample.sample.count = 1500;
+  sample.sample.seed = seed;
+  return SampleModelJob(model, sample);
+}
+
 TEST(PatchMeshJob, SphereOnTwoCubesPerAxis) {
   const Eigen::Vector3d c(0.1, -0.2, 0.3);
   Model sphere;
   sphere.AddPrimitive(NodeType::kSphere, {c.x(), c.y(), c.z(), 1.0});
-  SampleJobOptions sample;
-  sample.sample.count = 1500;
-  sample.sample.seed = 2;
-  const SampleJobResult scan = SampleModelJob(sphere, sample);
+  const SampleJobResult scan = Sample1500(sphere, 2);
   ASSERT_TRUE(scan.success) << scan.message;
   PatchMeshJobOptions options;
   options.fit.cells = 2;
@@ -55,10 +60,7 @@ TEST(PatchMeshJob, SphereOnTwoCubesPerAxis) {
 TEST(PatchMeshJob, EstimatedNormalsChangeTheFitAtTheCreasesOnly) {
   Model box;
   box.AddPrimitive(NodeType::kBox, {0, 0, 0, 1, 0, 0, 0, 0.5, 0.4, 0.3});
-  SampleJobOptions sample;
-  sample.sample.count = 1500;
-  sample.sample.seed = 3;
-  const SampleJobResult scan = SampleModelJob(box, sample);
+  const SampleJobResult scan = Sample1500(box, 3);
   ASSERT_TRUE(scan.success) << scan.message;
   PatchMeshJobOptions options;
   options.fit.cells = 3;
