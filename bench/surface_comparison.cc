@@ -21,6 +21,8 @@
 //                                [--far-field-ramp r] [--far-field-ramp-power p] [--only NAME-PART]
 //                                [--far-field-relaxation r] [--far-field-floor f]
 //                                [--sign-guard-samples s] [--normal-weight w] (MeshFitOptions, step 2)
+//                                [--sharp-normal f (crease leaves' normal rows x f, estimated
+//                                normals only: the cases whose normals the bench estimated)]
 //                                [--progress 1 (the fit's stages and rounds on stderr)]
 //                                [--continuity 0|1] [--soft-c1 w (continuity 0)]
 //                                [--smoothing-weight w] [--mesh-cells n] [--mesh-feature-angle deg]

@@ -133,7 +133,7 @@ struct MeshFitOptions {
   // normal_weight x sharp_normal_factor. Given normals keep the full weight: there they are
   // right, and lighter rows lose (tests/fit/bernstein/soft_c1_mesh_test.cc, chamfered block,
   // 3 000 points, one level on 4 cubes: RMS distance to the model, estimated normals
-  // 0.00701 full, 0.00596 lighter; true normals 0.00281 full, 0.00375 lighter;
+  // 0.00701 full, 0.00596 lighter; true normals 0.00394 full, 0.00505 lighter;
   // bench/RESULTS.md, "Normal rows lighter at the creases").
   bool normals_estimated = false;
   double sharp_normal_factor = 0.3;
