@@ -10,10 +10,11 @@
 //  - refined (the adaptive fit, one level on 6 cubes, crease leaves' C1 rows at 0.3 of the
 //    weight), it stays closer to the model than on the uniform grid, still without a spurious
 //    surface;
-//  - refined, with the crease leaves' normal rows at 0.3 of their weight
-//    (MeshFitOptions::sharp_normal_factor: the estimated normals there are a blend of two
-//    faces'), it stays closer to the model than with them at the full weight, still without a
-//    spurious surface.
+//  - refined, with PCA normals (a blend of two faces' at a crease), the crease leaves' normal
+//    rows at 0.3 of their weight (MeshFitOptions::normals_estimated, sharp_normal_factor) bring
+//    it closer to the model than the full weight, still without a spurious surface; with the
+//    sampler's true normals the lighter rows are farther, which is why given normals keep the
+//    full weight.
 #include <gtest/gtest.h>
 
 #include <algorithm>
