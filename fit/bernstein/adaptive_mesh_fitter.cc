@@ -104,7 +104,7 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
   BernsteinGrid grid = base;
   grid.refinement = UniformRefinement(grid.cells);
   grid.sharp.clear();
-  char text[160];
+  char text[256];
   std::snprintf(text, sizeof text, "at most %d level%s, leaves whose residual exceeds %.3g",
                 options.max_levels, options.max_levels == 1 ? "" : "s", threshold);
   ProgressStage progress(options.progress, "refinement", text);
@@ -131,9 +131,11 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
     if (static_cast<long long>(candidates.size()) > room) candidates.resize(room);
     std::vector<bool> wanted(static_cast<size_t>(fit.grid.NumLeaves()), false);
     for (long long q : candidates) wanted[q] = true;
-    // A try may grow surface off the data (below); then the leaves near where it grew are left
-    // whole and the round is fitted again, up to options.round_retries times.
+    // A try may grow surface off the data (below); then f is pinned near where it grew (and, from
+    // the second retry on, the leaves near it are left whole) and the round is fitted again, up
+    // to options.round_retries times.
     std::vector<bool> frozen(wanted.size(), false);
+    std::vector<FarFieldRow> pins;
     MeshFitResult next;
     std::optional<MeshFitResult> flip_free;  // the first try that changed no sign
     bool kept = false, no_gain = false;
@@ -168,6 +170,7 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
       // so the round was dropped; restarted, it is kept (one level 0.00186 -> 0.00157). C1 fits
       // keep the weight reached (restarting there: one level 0.00515 -> 0.00585).
       start.far_weight = options.continuity == 0 ? options.far_field_weight : fit.far_weight;
+      start.pins = pins;
       next = FitBernsteinMeshOnGrid(points, normals, options, finer, &start);
       ++rounds;
       // A round is kept only when it lowers the RMS residual (since the projection of refined
@@ -175,14 +178,23 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
       // block does; before, the QR's defect made the refined start 0.0198 against the coarse
       // fit's 0.0091) and grows no surface in empty space: at the sign guard's lattice (farther
       // than 2d from the data, fit/bernstein/empty_space_sign_guard.h) every sample clear of
-      // the coarser zero set keeps its sign and stays clear. Where a sample trips, the coarser
-      // leaves within a base cube of it (two on the next try, ...) are left whole and the round
-      // is fitted again; when no try is clean, the first one that changed no sign is kept (only
-      // the zero set came nearer some sample), else the round is dropped. Measured on the C0
-      // saddle block, two levels: kept whole, the first try grew a bulge of 0.3 off a corner
-      // (104 samples tripped, Chamfer 0.00487); refitted with 5 of 19 leaves whole, it tripped
-      // 1 sample without a sign change and was kept, and so was the second level's second try:
-      // Chamfer 0.00140 against the uniform grid's 0.00196. Dropping every try that trips (the
+      // the coarser zero set keeps its sign and stays clear. Where samples trip, f is pinned at
+      // the coarser fit's values on the watched samples within half a base cube of them
+      // (MeshFitStart::pins: full far-field weight, no step may flip one) and the round is
+      // fitted again with every leaf split; from the second retry on (round_retries >= 2) the
+      // coarser leaves within a base cube of the trips (two on the next, ...) are also left
+      // whole. When no try is clean, the first one that changed no sign is kept (only the zero
+      // set came nearer some sample), else the round is dropped. Pinning instead of leaving
+      // leaves whole (bench/RESULTS.md, "Refitted with f pinned where it grew"): Fit4CAD PC131's
+      // first level grew a film over a pocket (13 samples changed sign, f -0.004 against the
+      // coarser +0.07, all in empty leaves beside split ones); left whole, the leaves near it
+      // kept RMS at 0.106 against the try's 0.042 (Chamfer 0.12258); pinned (1 374 samples),
+      // the retry changed no sign and the next level was clean: 0.09545. Measured on the C0
+      // saddle block, two levels, before the lighter crease rows: kept whole, the first try grew
+      // a bulge of 0.3 off a corner (104 samples tripped, Chamfer 0.00487); refitted with 5 of
+      // 19 leaves whole, it tripped 1 sample without a sign change and was kept, and so was the
+      // second level's second try: Chamfer 0.00140 against the uniform grid's 0.00196 (pinned
+      // instead, with the crease rows: 0.00089). Dropping every try that trips (the
       // rule before) kept no level on the saddle, domed block or flange; keeping the tries
       // whose signs hold but the zero set came nearer let a blob of 0.2 through on the
       // chamfered block (0.00204), which the retry removes (0.00145).
@@ -211,16 +223,31 @@ MeshFitResult FitAdaptiveBernsteinMesh(const std::vector<Vec>& points,
                     "level %d, try %d: surface grew off the data at %zu samples (%lld changed "
                     "sign)%s",
                     level, attempt + 1, grew.size(), flipped,
-                    attempt < options.round_retries ? "; fitting again with the leaves near "
-                                                      "them left whole"
-                                                    : "");
+                    attempt == options.round_retries ? ""
+                    : attempt == 0 ? "; fitting again with f pinned there"
+                                   : "; fitting again with f pinned there and the leaves near "
+                                     "them left whole");
       progress.Update(text);
+      // Pins: the watched samples within half a base cube of every tripped one, at the coarser
+      // fit's values (they have its sign, clear of its zero set).
+      std::vector<Eigen::Vector3d> centres;
+      for (const EmptySpaceSignGuard::Trip& g : grew) centres.push_back(g.x);
+      for (const Eigen::Vector3d& x : guard.WatchedNear(centres, 0.5 * fit.grid.cell)) {
+        if (std::any_of(pins.begin(), pins.end(),
+                        [&](const FarFieldRow& r) { return r.x == x; }))
+          continue;  // pinned by an earlier try (the guard's lattice is the same)
+        FarFieldRow pin;
+        pin.x = x;
+        pin.target = BernsteinMesh::Evaluate(k, fit.grid, fit.control_points.data(), x.data());
+        pins.push_back(pin);
+      }
+      if (attempt == 0) continue;
       for (long long q = 0; q < fit.grid.NumLeaves(); ++q) {
         const Tetrahedron first = fit.grid.TetrahedronOf(6 * q);
         const Vec lo = first.vertex(0), hi = first.vertex(3);
         for (const EmptySpaceSignGuard::Trip& g : grew)
           if ((g.x - g.x.cwiseMax(lo).cwiseMin(hi)).lpNorm<Eigen::Infinity>() <=
-              (attempt + 1) * fit.grid.cell) {
+              attempt * fit.grid.cell) {
             frozen[q] = true;
             break;
           }

@@ -226,6 +226,7 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
                                      const std::vector<Vec>& normals, double d,
                                      const MeshFitOptions& options, std::vector<double> b,
                                      const std::vector<FarFieldRow>& far, double* far_weight_io,
+                                     const std::vector<FarFieldRow>& pins,
                                      DomainLeastSquares* solver, int* iterations) {
   double far_weight = *far_weight_io;
   const long long n = NumBernsteinControlPoints(k);
@@ -250,9 +251,11 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
   double best_rms = rms;
   *iterations = 0;
   const long long start_errors = FarFieldSignErrors(grid, k, b, far);
+  const long long start_pin_errors = FarFieldSignErrors(grid, k, b, pins);
   for (int it = 0; it < options.max_iterations; ++it) {
     const double s = loss_factor * rms;
     AddFarFieldRows(far, far_weight, solver);
+    AddFarFieldRows(pins, start_far_weight, solver);  // never relaxed
     for (size_t i = 0; i < points.size(); ++i) {
       double tau[4];
       const long long t = grid.Locate(points[i].data(), tau);
@@ -297,6 +300,7 @@ std::vector<double> RefineLinearised(const BernsteinGrid& grid, int k,
       next = MeshRms(grid, k, trial, points, normals, nullptr);
       // (The guard only for a step that would be taken: it costs more than the RMS.)
       admissible = FarFieldSignErrors(grid, k, trial, far) <= start_errors &&
+                   FarFieldSignErrors(grid, k, trial, pins) <= start_pin_errors &&
                    (!guard || !(next < rms) || guard->Changes(k, trial) == 0);
       if (next < rms && admissible) break;
     }
@@ -607,6 +611,8 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
                        winding ? &*winding : nullptr);
   }
   double far_weight = options.far_field_weight;
+  static const std::vector<FarFieldRow> no_pins;
+  const std::vector<FarFieldRow>& pins = fit_start ? fit_start->pins : no_pins;
   std::vector<double> b;
   if (fit_start) {  // an earlier fit on a coarser grid, re-expressed on this one
     b = fit_start->control_points;
@@ -622,8 +628,8 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
   // point uphill, e.g. on the torus of the tests) the Ceres refinement on the exact residuals,
   // projected, kept when better. Returns the RMS; *defect the continuity defect.
   auto unconstrained = [&](std::vector<double>* b, int* iterations, double* defect) {
-    *b = RefineLinearised(grid, k, points, normals, d, options, *b, far, &far_weight, &solver,
-                          iterations);
+    *b = RefineLinearised(grid, k, points, normals, d, options, *b, far, &far_weight, pins,
+                          &solver, iterations);
     *defect = projector.Project(b);
     double rms = MeshRms(grid, k, *b, points, normals, nullptr);
     // (Not on grids above 1 500 tetrahedra, where the Ceres fallback takes minutes, nor when the
@@ -638,7 +644,8 @@ MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Vec>& points,
       // Ceres has no far-field rows: keep its result only if it adds no sign error at the
       // far-field points (no spurious sheet in empty space).
       if (polished_rms < rms &&
-          FarFieldSignErrors(grid, k, polished, far) <= FarFieldSignErrors(grid, k, *b, far)) {
+          FarFieldSignErrors(grid, k, polished, far) <= FarFieldSignErrors(grid, k, *b, far) &&
+          FarFieldSignErrors(grid, k, polished, pins) <= FarFieldSignErrors(grid, k, *b, pins)) {
         *b = polished;
         rms = polished_rms;
         *defect = polished_defect;

@@ -100,6 +100,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/bernstein/far_field_rows.h"
 #include "fit/common/progress.h"
 #include "model/bernstein/bernstein_mesh.h"
 #include "model/model.h"
@@ -177,8 +178,9 @@ struct MeshFitOptions {
   bool sharp_features = true;
   double feature_angle_deg = 40.0;
   // A refined round that grows surface away from the data (fit/bernstein/adaptive_mesh_fitter.h)
-  // is fitted again with the leaves near the growth left whole, up to this many times (a
-  // second retry changed none of the 8 CAD-like benchmark clouds' results).
+  // is fitted again with f pinned near the growth (from the second retry on, also with the
+  // leaves near it left whole), up to this many times (on Fit4CAD PC131 a second retry changed
+  // nothing: its first retry changed no sign, and the first such try is kept).
   int round_retries = 1;
   // Progress (fit/common/progress.h): stage "patch-mesh fit" per fit (its size at the start, the
   // RMS at the end); an adaptive fit also reports each refined try's fate as a "refinement"
@@ -227,6 +229,11 @@ MeshFitResult FitBernsteinMesh(const std::vector<Eigen::Vector3d>& points,
 struct MeshFitStart {
   std::vector<double> control_points;
   double far_weight = 1.0;
+  // Pinned empty-space rows: value rows at points away from the data, at the far-field weight
+  // the fit started from (options.far_field_weight) through every relaxed stage, and no step
+  // may add sign errors at them (the adaptive fit pins f where a refined try grew surface off
+  // the data, fit/bernstein/adaptive_mesh_fitter.h).
+  std::vector<FarFieldRow> pins;
 };
 MeshFitResult FitBernsteinMeshOnGrid(const std::vector<Eigen::Vector3d>& points,
                                      const std::vector<Eigen::Vector3d>& normals,

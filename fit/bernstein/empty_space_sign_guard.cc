@@ -110,4 +110,20 @@ std::vector<EmptySpaceSignGuard::Trip> EmptySpaceSignGuard::Tripped(
   return tripped;
 }
 
+std::vector<Eigen::Vector3d> EmptySpaceSignGuard::WatchedNear(
+    const std::vector<Eigen::Vector3d>& centres, double radius) const {
+  if (clear_.size() != samples_.size())
+    throw std::logic_error("EmptySpaceSignGuard::WatchedNear before Record");
+  std::vector<Eigen::Vector3d> near;
+  for (size_t s = 0; s < samples_.size(); ++s) {
+    if (!clear_[s]) continue;
+    for (const Eigen::Vector3d& c : centres)
+      if ((samples_[s] - c).lpNorm<Eigen::Infinity>() <= radius) {
+        near.push_back(samples_[s]);
+        break;
+      }
+  }
+  return near;
+}
+
 }  // namespace implicitfit

@@ -40,6 +40,10 @@ class EmptySpaceSignGuard {
   };
   std::vector<Trip> Tripped(int degree, const std::vector<double>& control_points) const;
   long long size() const { return static_cast<long long>(samples_.size()); }
+  // The watched samples (clear of the recorded zero set) within `radius` (max-norm) of any of
+  // `centres`.
+  std::vector<Eigen::Vector3d> WatchedNear(const std::vector<Eigen::Vector3d>& centres,
+                                           double radius) const;
 
  private:
   BernsteinGrid grid_;

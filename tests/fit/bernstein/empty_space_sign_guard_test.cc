@@ -143,5 +143,35 @@ TEST(EmptySpaceSignGuard, ChangesBeforeRecordThrows) {
   EXPECT_THROW(guard.Changes(2, std::vector<double>(60, 1.0)), std::logic_error);
 }
 
+// WatchedNear: the lattice points (spacing 1/6 from the box corner) within 0.3 (max-norm) of
+// (1.5, 0, 0), farther than the band 0.2 from every data point (brute force) and clear of the
+// recorded unit sphere: first-order distance (|x|^2 - 1) / (2|x|) > 2 rho, rho = sqrt(3)/12.
+TEST_F(EmptySpaceSignGuardTest, WatchedNearAreTheClearSamplesAroundTheCentres) {
+  EmptySpaceSignGuard guard(grid_, points_, 0.2, 6);
+  guard.Record(2, Mesh(grid_, [](long long) { return Sphere(Vec::Zero(), 1.0); }));
+  const Vec centre(1.5, 0, 0);
+  const double rho = std::sqrt(3.0) / 12;
+  std::vector<Vec> expected;
+  for (int l = 0; l <= 24; ++l)
+    for (int j = 0; j <= 24; ++j)
+      for (int i = 0; i <= 24; ++i) {
+        const Vec x = Vec::Constant(-2) + Vec(i, j, l) / 6.0;
+        if ((x - centre).lpNorm<Eigen::Infinity>() > 0.3 + 1e-9) continue;
+        bool near = false;
+        for (const Vec& p : points_) near |= (p - x).norm() <= 0.2;
+        if (!near && (x.squaredNorm() - 1) / (2 * x.norm()) > 2 * rho) expected.push_back(x);
+      }
+  ASSERT_GT(expected.size(), 20u);
+  const std::vector<Vec> near = guard.WatchedNear({centre}, 0.3 + 1e-9);
+  EXPECT_EQ(near.size(), expected.size());
+  for (const Vec& e : expected) {
+    bool found = false;
+    for (const Vec& x : near) found |= (e - x).norm() < 1e-12;
+    EXPECT_TRUE(found) << e.transpose();
+  }
+  // A second centre adds samples, never loses one.
+  EXPECT_GT(guard.WatchedNear({centre, Vec(-1.5, 0, 0)}, 0.3 + 1e-9).size(), near.size());
+}
+
 }  // namespace
 }  // namespace implicitfit
