@@ -37,7 +37,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -287,10 +289,17 @@ std::vector<int> ParseDegrees(const char* list) {
   return degrees;
 }
 
-// Reads the "--name value" pairs (unknown pairs and a lone last word are ignored).
+// Reads the "--name value" pairs; an unknown name or a name without a value is an error (exit 2,
+// before any work), and the --save-meshes folder is made when it is missing.
 Options ParseOptions(int argc, char** argv) {
   Options o;
   implicitfit::MeshFitOptions& f = o.fit;
+  const auto refuse = [](const std::string& why) {
+    std::fprintf(stderr, "surface_comparison: %s (options: the comment at the top of "
+                         "bench/surface_comparison.cc)\n", why.c_str());
+    std::exit(2);
+  };
+  if (argc % 2 == 0) refuse(std::string(argv[argc - 1]) + " has no value");
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* name = argv[i];
     const char* value = argv[i + 1];
@@ -352,11 +361,18 @@ Options ParseOptions(int argc, char** argv) {
       f.sharp_normal_factor = std::atof(value);
     else if (!std::strcmp(name, "--soft-c1-sharp"))
       f.soft_c1_sharp_factor = std::atof(value);
-
     else if (!std::strcmp(name, "--mesh-cells"))
       o.mesh_cells = std::atoi(value);
     else if (!std::strcmp(name, "--mesh-feature-angle"))
       o.mesh_feature_angle = std::atof(value);
+    else
+      refuse(std::string("unknown option ") + name);
+  }
+  if (!o.save_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(o.save_dir, error);
+    if (error || !std::filesystem::is_directory(o.save_dir))
+      refuse("--save-meshes " + o.save_dir + ": cannot make the folder (" + error.message() + ")");
   }
   return o;
 }
