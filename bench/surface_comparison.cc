@@ -26,6 +26,11 @@
 //                                [--progress 1 (the fit's stages and rounds on stderr)]
 //                                [--continuity 0|1] [--soft-c1 w (continuity 0)]
 //                                [--smoothing-weight w] [--mesh-cells n] [--mesh-feature-angle deg]
+//                                [--adaptive 1] [--max-levels L] [--sharp 0|1] [--feature-angle deg]
+//                                [--refine-factor r] [--refine-spacing-floor s]
+//                                [--min-leaf-spacings m] [--max-unknowns n] [--soft-c1-sharp f]
+//                                (adaptive refinement, MeshFitOptions)
+//                                [--tangent-plane-signs 1] [--true-normals 1]
 //                                [--save-meshes DIR (every method's mesh as
 //                                DIR/<cloud>-<method>.ply with each vertex's distance to the
 //                                truth in .ply.dist, the cloud and the truth's points as
@@ -345,6 +350,8 @@ Options ParseOptions(int argc, char** argv) {
       f.feature_angle_deg = std::atof(value);
     else if (!std::strcmp(name, "--refine-factor"))
       f.refine_factor = std::atof(value);
+    else if (!std::strcmp(name, "--refine-spacing-floor"))
+      f.refine_spacing_floor = std::atof(value);
     else if (!std::strcmp(name, "--min-leaf-spacings"))
       f.min_leaf_spacings = std::atof(value);
     else if (!std::strcmp(name, "--max-unknowns"))
