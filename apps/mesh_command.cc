@@ -1,12 +1,14 @@
 // implicitfit mesh MODEL.json --out MESH.ply [--box xmin,ymin,zmin,xmax,ymax,zmax] [--cell h]
-//                 [--clip-to-tetrahedron]
+//                 [--clip-to-tetrahedron] [--quiet]
 // A triangle mesh of the model's zero set with normals from grad f (datasets/meshing/model_mesher.h).
 // --clip-to-tetrahedron meshes every Bernstein patch as Guo's object S(f) ∩ V, the solid within
 // its tetrahedron (model/file/clip_to_tetrahedron.h): a closed surface along V's faces.
+// Progress on stderr (each step of the mesher: a fine grid takes seconds), unless --quiet.
 #include <cmath>
 #include <iostream>
 
 #include "apps/command.h"
+#include "apps/progress_printer.h"
 #include "datasets/io/io_error.h"
 #include "datasets/io/model_file.h"
 #include "implicitfit/mesh.h"
@@ -43,12 +45,15 @@ CommandAction AddMeshCommand(CLI::App& app) {
   auto clip = std::make_shared<bool>(false);
   cmd->add_flag("--clip-to-tetrahedron", *clip,
                 "Mesh each Bernstein patch within its tetrahedron only (Guo's object S(f) ∩ V)");
-  return [model_path, out, box, cell, clip]() {
+  auto quiet = std::make_shared<bool>(false);
+  cmd->add_flag("--quiet", *quiet, "No progress on stderr (failures are still reported)");
+  return [model_path, out, box, cell, clip, quiet]() {
     if (*out != "-" && (out->size() < 4 || out->substr(out->size() - 4) != ".ply"))
       throw InputError(*out + ": unsupported output format (use .ply, or - for stdout)");
     const Model model = ReadModelFile(*model_path);
     MeshJobOptions options;
     options.clip_to_tetrahedron = *clip;
+    options.progress = StderrProgress("mesh", *quiet);
     if (*clip && !HasBernsteinPatch(model))
       throw InputError(*model_path + ": --clip-to-tetrahedron: the model has no bernstein_patch");
     options.mesh.cell = *cell;

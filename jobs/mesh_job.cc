@@ -66,7 +66,16 @@ MeshJobResult MeshModelJob(const Model& model, const MeshJobOptions& options) {
     if (out.clipped_patches == 0)
       throw std::invalid_argument("clip_to_tetrahedron: the model has no bernstein_patch");
   }
-  out.result = MeshModel(meshed, options.mesh);
+  char detail[96];
+  if (options.mesh.cell > 0)
+    std::snprintf(detail, sizeof detail, "cell %.6g", options.mesh.cell);
+  else
+    std::snprintf(detail, sizeof detail, "default cell");
+  ProgressStage stage(options.progress, "mesh", detail);
+  MeshOptions mesh = options.mesh;
+  if (options.progress) mesh.on_step = [&stage](const std::string& what) { stage.Update(what); };
+  out.result = MeshModel(meshed, mesh);
+  stage.End(std::to_string(out.result.mesh.triangles.size()) + " triangles");
   out.success = !out.result.mesh.triangles.empty();
   out.termination = out.success ? FitTermination::kConverged : FitTermination::kFailure;
   out.message = out.success ? "meshed" : "the zero set does not cross the box";

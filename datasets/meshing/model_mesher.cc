@@ -338,10 +338,17 @@ void OrientWithTheGradient(const Model& model, TriangleMesh* mesh) {
 
 MeshResult MeshModel(const Model& model, const MeshOptions& options) {
   MeshResult result;
+  const auto step = [&](const std::string& what) {
+    if (options.on_step) options.on_step(what);
+  };
   Grid grid = SampleGrid(model, options, &result);
+  step("grid " + std::to_string(grid.n[0]) + "x" + std::to_string(grid.n[1]) + "x" +
+       std::to_string(grid.n[2]) + " sampled");
   const vtkSmartPointer<vtkPolyData> poly = ContourInIndexSpace(&grid);
+  step("contoured: " + std::to_string(poly->GetNumberOfPoints()) + " vertices");
   std::vector<double> abs_value;
   PlaceVerticesOnRoots(model, grid, poly, options.num_threads, &result.mesh, &abs_value);
+  step("vertices on the zero set");
   result.max_abs_value =
       abs_value.empty() ? 0.0 : *std::max_element(abs_value.begin(), abs_value.end());
   std::vector<Eigen::Vector3i> triangle_cells;  // the grid cell of each triangle (step 5)
@@ -357,6 +364,7 @@ MeshResult MeshModel(const Model& model, const MeshOptions& options) {
     result.feature_points = stats.feature_points;
     result.feature_flips = stats.flips;
     result.max_feature_distance = stats.max_distance;
+    step("sharp features: " + std::to_string(stats.feature_points) + " points");
   }
   return result;
 }

@@ -31,6 +31,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,9 @@ struct MeshOptions {
   bool sharp_features = true;        // step 5
   bool drop_jumps = true;            // step 3b (header)
   double feature_angle_deg = 30.0;   // step 5: normals spreading more mark a crease or corner
+  // Called after each step with what it made ("grid 120x80x60 sampled", ...); empty: nothing
+  // (jobs/mesh_job.cc turns it into progress on stderr).
+  std::function<void(const std::string&)> on_step;
 };
 
 struct MeshResult {

@@ -14,6 +14,7 @@
 
 #include "datasets/meshing/model_mesher.h"
 #include "fit/common/fit_summary.h"
+#include "fit/common/progress.h"
 #include "jobs/report_header.h"
 #include "model/model.h"
 
@@ -22,6 +23,9 @@ namespace implicitfit {
 struct MeshJobOptions {
   MeshOptions mesh;                  // box (default: the model's, enlarged), cell, threads
   bool clip_to_tetrahedron = false;  // needs a bernstein_patch in the model
+  // Stage "mesh" (fit/common/progress.h): the cell at the start, each step of the mesher
+  // (datasets/meshing/model_mesher.h), the triangles at the end. Empty: nothing reported.
+  ProgressCallback progress;
   // False (with a reason naming the option) for a negative or non-finite cell or a box that is
   // not finite with min < max on every axis.
   bool IsValid(std::string* error) const;

@@ -56,6 +56,29 @@ TEST(MeshCommand, MeshesEveryModelKindIntoABinaryPlyWithFaces) {
   }
 }
 
+// Progress on stderr: the stage with the cell, the grid sampled, the triangles at the end (as many
+// as the file holds); nothing with --quiet, and the same file.
+TEST(MeshCommand, ReportsEachStepOnStderrUnlessQuiet) {
+  const std::string dir = ScratchDir("mesh_progress");
+  WriteText(
+      dir + "/sphere.json",
+      R"({"format": "implicitfit-model", "version": 1, "root": {"type": "sphere", "center": [0, 0, 0], "radius": 1}})");
+  const auto loud = RunCommand(kCli + " mesh " + dir + "/sphere.json --cell 0.1 --out " + dir +
+                               "/loud.ply");
+  ASSERT_EQ(loud.exit_code, 0) << loud.err;
+  EXPECT_NE(loud.err.find("implicitfit mesh: mesh (cell 0.1) ..."), std::string::npos)
+      << loud.err;
+  EXPECT_NE(loud.err.find("implicitfit mesh: mesh: grid "), std::string::npos) << loud.err;
+  const long triangles = HeaderCount(Slurp(dir + "/loud.ply"), "face");
+  EXPECT_NE(loud.err.find("(" + std::to_string(triangles) + " triangles)"), std::string::npos)
+      << loud.err;
+  const auto quiet = RunCommand(kCli + " mesh " + dir + "/sphere.json --cell 0.1 --out " + dir +
+                                "/quiet.ply --quiet");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_EQ(Slurp(dir + "/quiet.ply"), Slurp(dir + "/loud.ply"));
+}
+
 TEST(MeshCommand, BadInputExitsTwoWithoutAFile) {
   const std::string dir = ScratchDir("mesh_bad");
   WriteText(
