@@ -1,5 +1,5 @@
 // implicitfit batch INPUTS... [--manifest FILE]... --model KIND --out-dir DIR [--jobs N]
-//                  [--resume] [--shard i/N] [--seed s] [--threshold t] [--fix FIELD=V ...]
+//                  [--resume] [--quiet] [--shard i/N] [--seed s] [--threshold t] [--fix FIELD=V ...]
 //                  [--estimator robust|least-squares|minimum-zone]
 // Fits one primitive per cloud (apps/batch/batch_runner.h), inputs listed as in apps/batch/batch_inputs.h.
 // Writes DIR/<name>.model.json and DIR/<name>.report.json per input, then DIR/summary.csv
@@ -38,7 +38,7 @@ struct BatchArgs {
   std::vector<std::string> inputs, manifests, fixes;
   std::string kind, out_dir, shard;
   int jobs = 0;
-  bool resume = false, view = false;
+  bool resume = false, view = false, quiet = false;
   unsigned seed = 1;
   double threshold = 0.0;
   std::string estimator = "robust";
@@ -182,6 +182,8 @@ CommandAction AddBatchCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--view", a->view,
                 "Also write DIR/<name>.view.html per result and DIR/index.html linking them");
+  cmd->add_flag("--quiet", a->quiet,
+                "No progress on stderr: only the inputs that failed (and the summary)");
   cmd->add_flag("--resume", a->resume,
                 "Skip inputs whose model and successful report are already complete");
   cmd->add_option("--shard", a->shard,
@@ -251,7 +253,7 @@ CommandAction AddBatchCommand(CLI::App& app) {
     options.settings = BatchSettings(*a, scene, solid, model_kind);
     CheckOutputsBeforeAnyFit(*a, all, inputs, options, summary_path, index_name);
     const auto start = std::chrono::steady_clock::now();
-    BatchProgress progress(inputs.size(), ::isatty(STDERR_FILENO) == 1);
+    BatchProgress progress(inputs.size(), ::isatty(STDERR_FILENO) == 1, a->quiet);
     const auto on_done = [&](const BatchOutcome& o) { progress.Done(o); };
 #ifdef IMPLICITFIT_WITH_MPI
     if (LaunchedUnderMpi()) {
@@ -262,14 +264,14 @@ CommandAction AddBatchCommand(CLI::App& app) {
       if (mpi.rank() != 0) return 0;  // rank 0 reports (mpirun exits with its code)
       progress.Finish();
       const int code = Finish(outcomes, summary_path, SecondsSince(start));
-      if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
+      if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, a->quiet);
       return code;
     }
 #endif
     const std::vector<BatchOutcome> outcomes = RunBatch(inputs, options, on_done);
     progress.Finish();
     const int code = Finish(outcomes, summary_path, SecondsSince(start));
-    if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, false);
+    if (a->view) WriteBatchViews(inputs, outcomes, options, index_name, a->quiet);
     return code;
   };
 }

@@ -2,14 +2,14 @@
 
 namespace implicitfit {
 
-BatchProgress::BatchProgress(size_t total, bool terminal, std::FILE* out)
-    : total_(total), terminal_(terminal), out_(out) {}
+BatchProgress::BatchProgress(size_t total, bool terminal, bool quiet, std::FILE* out)
+    : total_(total), terminal_(terminal && !quiet), quiet_(quiet), out_(out) {}
 
 void BatchProgress::Done(const BatchOutcome& o) {
   ++done_;
   if (o.status != BatchStatus::kSkipped) ++fitted_;
   const bool failed = !o.Succeeded();
-  if (!terminal_ || failed) {
+  if ((!terminal_ && !quiet_) || failed) {
     if (terminal_) std::fputs("\r\033[K", out_);
     std::fprintf(out_, "[%zu/%zu] %s %s%s%s\n", done_, total_, o.name.c_str(),
                  BatchStatusName(o.status), failed ? ": " : "", failed ? o.Failure().c_str() : "");

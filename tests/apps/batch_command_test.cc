@@ -475,6 +475,21 @@ TEST_F(BatchCommand, InvalidUsageExits2AndWritesNothing) {
 
 namespace {
 
+// --quiet: no line for the inputs that fitted, a line for each that failed (here a garbage file),
+// the summary on stdout as without it.
+TEST_F(BatchCommand, QuietPrintsOnlyTheFailures) {
+  const std::string out = testsupport::ScratchDir("batch_quiet");
+  const std::string bad_dir = testsupport::ScratchDir("batch_quiet_inputs");
+  WriteText(bad_dir + "/garbage.xyz", "this is not a point cloud\n");
+  const auto r = RunCommand(kCli + " batch" + Join(*truths_, 3) + " " + bad_dir +
+                            "/garbage.xyz --model sphere --out-dir " + out + " --jobs 2 --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("garbage error: "), std::string::npos) << r.err;
+  for (size_t i = 0; i < 3; ++i)
+    EXPECT_EQ(r.err.find((*truths_)[i].name), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("4 inputs: 3 fitted, 0 skipped, 1 failed"), std::string::npos) << r.out;
+}
+
 TEST_F(BatchCommand, ProgressOnATerminalIsOneUpdatingLine) {
   if (RunCommand("command -v script").exit_code != 0)
     GTEST_SKIP() << "no `script` to give a terminal";
